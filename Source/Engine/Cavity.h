@@ -1,0 +1,41 @@
+#pragma once
+// The enclosed air as a uniform-pressure adiabatic cavity coupling the two heads
+// (physics-notes section 3): with both heads' displacements positive upward the volume
+// change is dV = h_b^2 sum(w_b) - h_c^2 sum(w_c) and p = -(rho_a c_a^2 / V0) dV; the pressure
+// pushes the batter up (+p) and the carry head down (-p).
+//
+// Explicit form: p^n from dV^n. Its energy is (K/2) dV^{n+1} dV^n, which can dip below
+// (K/2)(mu_t+ dV)^2 by at most (K k^2 / 8)(dt+ dV)^2; Membrane reserves that share of its
+// kinetic energy in the grid (kineticReserve()), so the coupled scheme is stable for every
+// tension the grid allows.
+
+#include "DrumConfig.h"
+
+namespace snaresim
+{
+
+class Cavity
+{
+public:
+    Cavity(const CavitySpec& spec, double radius_m);
+
+    // K = rho_a c_a^2 / V0 (Pa/m^3); 0 without air.
+    double stiffness() const { return K; }
+    // Share of a head's kinetic energy the explicit coupling may need, for the grid of a head
+    // of this radius and surface density at time step k: K_max k^2 A / (2 rho), A = pi R^2.
+    static double kineticReserve(const CavitySpec& spec, double radius_m, double density_kg_per_m2, double timeStep_s);
+
+    double pressureNow() const { return -K * dVNow; }  // p^n, Pa
+    void setVolumeNext(double dV) { dVNext = dV; }
+    double volumeChangeNow() const { return dVNow; }
+    double volumeChangeNext() const { return dVNext; }
+    double energy() const { return 0.5 * K * dVNext * dVNow; } // at n+1/2
+    void advance() { dVNow = dVNext; }
+    void clear() { dVNow = dVNext = 0.0; }
+
+private:
+    double K;
+    double dVNow = 0.0, dVNext = 0.0;
+};
+
+} // namespace snaresim

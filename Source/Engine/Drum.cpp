@@ -1,0 +1,224 @@
+#include "Drum.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace snaresim
+{
+
+namespace
+{
+const DrumConfig& validated(const DrumConfig& c)
+{
+    c.validate();
+    return c;
+}
+
+double reserveFor(const DrumConfig& c, const MembraneSpec& m)
+{
+    return Cavity::kineticReserve(c.cavity, m.radius_m, m.density_kg_per_m2, 1.0 / c.sampleRate_Hz);
+}
+} // namespace
+
+Drum::Drum(const DrumConfig& config)
+    : cfg(validated(config)), k(1.0 / config.sampleRate_Hz), air(cfg.cavity, cfg.batter.radius_m),
+      batterHead(cfg.batter, k, reserveFor(cfg, cfg.batter)), carryHead(cfg.carry, k, reserveFor(cfg, cfg.carry)),
+      wires(cfg.fittedSnares(), cfg.carry.radius_m, k), snareCoupling(cfg.snares, wires, carryHead), engaged(cfg.snares.engaged)
+{
+    mallets.reserve((size_t) cfg.numMallets);
+    for (int i = 0; i < cfg.numMallets; ++i)
+        mallets.emplace_back(cfg.mallet, batterHead.grid(), k);
+    const double R = cfg.batter.radius_m;
+    topMic.reserve(4);
+    bottomMic.reserve(4);
+    batterHead.grid().makeDistribution(cfg.mics.topX_frac * R, cfg.mics.topY_frac * R, 0.0, topMic);
+    carryHead.grid().makeDistribution(cfg.mics.bottomX_frac * R, cfg.mics.bottomY_frac * R, 0.0, bottomMic);
+}
+
+void Drum::strike(double speed, double xFrac, double yFrac)
+{
+    if (! std::isfinite(speed) || ! std::isfinite(xFrac) || ! std::isfinite(yFrac) || speed <= 0.0)
+        return;
+    speed = std::min(speed, 50.0);
+    const double r = std::hypot(xFrac, yFrac);
+    if (r > 0.95) // keep the patch on the head
+    {
+        xFrac *= 0.95 / r;
+        yFrac *= 0.95 / r;
+    }
+
+    // Round robin, skipping a mallet that is still touching the head when another is free.
+    int chosen = nextMallet;
+    for (int tries = 0; tries < (int) mallets.size(); ++tries)
+    {
+        const int i = (nextMallet + tries) % (int) mallets.size();
+        const Mallet& m = mallets[(size_t) i];
+        if (! m.inPlay() || (m.etaNow <= 0.0 && m.etaPrev <= 0.0))
+        {
+            chosen = i;
+            break;
+        }
+    }
+    nextMallet = (chosen + 1) % (int) mallets.size();
+
+    Mallet& m = mallets[(size_t) chosen];
+    const double before = m.energyBeforeStep();
+    const double R = cfg.batter.radius_m;
+    double after = 0.0;
+    if (m.aim(xFrac * R, yFrac * R))
+    {
+        m.launch(batterHead.sampleNow(m.patch()), batterHead.samplePrev(m.patch()), speed);
+        after = m.energyBeforeStep();
+    }
+    ledger.injected_J += after - before;
+    ledger.mallets_J += after - before;
+}
+
+void Drum::strikeAtDefaultPoint(double speed) { strike(speed, cfg.strikeRadius_frac, 0.0); }
+
+void Drum::setSnaresEngaged(bool on)
+{
+    if (on == engaged)
+        return;
+    const double before = wires.energyBeforeStep() + snareCoupling.potentialEnergyBeforeStep();
+    if (on)
+        snareCoupling.layOnHead(carryHead, wires); // wires rest on the head as it moves now
+    else
+    {
+        wires.clear(); // thrown off: out of the model
+        snareCoupling.clear();
+    }
+    engaged = on;
+    const double after = on ? wires.energyBeforeStep() : 0.0;
+    ledger.injected_J += after - before;
+    ledger.snares_J += after - before;
+}
+
+double Drum::step()
+{
+    // Cavity pressure at time n drives both heads (explicit form, see Cavity.h).
+    const double p = air.pressureNow();
+    batterHead.computeFree(p);    // eq. (22) without the contact force
+    carryHead.computeFree(-p);    // eq. (23) without snare and end forces
+    if (engaged)
+        wires.computeFree();      // eq. (28) without collision and end forces
+
+    const auto mallet = malletCoupling.step(batterHead, mallets); // eq. (44)-(45)
+    int iterations = mallet.iterations;
+    bool fallback = mallet.fallback;
+    if (engaged)
+    {
+        const auto snare = snareCoupling.step(carryHead, wires); // eq. (48)-(50)
+        iterations = std::max(iterations, snare.iterations);
+        fallback = fallback || snare.fallback;
+        stats.maxSnareIterations = std::max(stats.maxSnareIterations, snare.iterations);
+        stats.snareContacts = snare.contacts;
+        stats.maxSnarePenetration_m = std::max(stats.maxSnarePenetration_m, snareCoupling.maxPenetration());
+    }
+    if (iterations > 0)
+    {
+        stats.lastIterations = iterations;
+        stats.maxIterations = std::max(stats.maxIterations, iterations);
+    }
+    if (fallback)
+        ++stats.fallbacks;
+    retrieveRisingMallets();
+
+    const double dVNow = air.volumeChangeNow();
+    air.setVolumeNext(batterHead.sweptVolumeNext() - carryHead.sweptVolumeNext());
+
+    if (trackEnergy)
+        updateEnergy();
+
+    // Microphones
+    signals.top_m_per_s = velocityAt(batterHead, topMic);
+    signals.bottom_m_per_s = velocityAt(carryHead, bottomMic);
+    const double d2V = (air.volumeChangeNext() - 2.0 * dVNow + dVPrev) / (k * k);
+    signals.far_Pa = cfg.cavity.airDensity_kg_per_m3 / (4.0 * std::numbers::pi * cfg.mics.farDistance_m) * d2V;
+    const auto& m = cfg.mics;
+    signals.mix = cfg.outputGain
+                * (m.mixTop * m.topGain * signals.top_m_per_s + m.mixBottom * m.bottomGain * signals.bottom_m_per_s
+                   + m.mixFar * m.farGain * signals.far_Pa);
+
+    dVPrev = dVNow;
+    batterHead.advance();
+    carryHead.advance();
+    if (engaged)
+    {
+        wires.advance();
+        snareCoupling.advance();
+    }
+    air.advance();
+    for (auto& ml : mallets)
+        ml.advance();
+    return signals.mix;
+}
+
+double Drum::output(Mic mic) const
+{
+    const auto& m = cfg.mics;
+    switch (mic)
+    {
+        case Mic::top: return cfg.outputGain * m.topGain * signals.top_m_per_s;
+        case Mic::bottom: return cfg.outputGain * m.bottomGain * signals.bottom_m_per_s;
+        case Mic::far: return cfg.outputGain * m.farGain * signals.far_Pa;
+        case Mic::mix: break;
+    }
+    return signals.mix;
+}
+
+double Drum::velocityAt(const Membrane& head, const GridDistribution& point) const
+{
+    return (head.sampleNext(point) - head.sampleNow(point)) / k;
+}
+
+void Drum::retrieveRisingMallets()
+{
+    // A mallet that has left the head and rises past kRetrieveHeight is taken back by the
+    // player: it leaves the model with its energy (counted in the ledger), so a free flight
+    // never grows z to where round-off would spoil the energy or the solve.
+    for (auto& m : mallets)
+        if (m.inPlay() && m.etaNext < -kRetrieveHeight_m && m.etaNow < 0.0 && m.zNext > m.zNow)
+        {
+            const double e = m.kineticEnergy() + 0.5 * (m.potential().phi(m.etaNext) + m.potential().phi(m.etaNow));
+            ledger.injected_J -= e;
+            m.park();
+        }
+}
+
+void Drum::updateEnergy()
+{
+    ledger.batter_J = batterHead.energy();
+    ledger.carry_J = carryHead.energy();
+    double kinetic = 0.0;
+    for (const auto& m : mallets)
+        if (m.inPlay())
+            kinetic += m.kineticEnergy();
+    ledger.mallets_J = kinetic + MalletContact::potentialEnergy(mallets);
+    ledger.snares_J = engaged ? wires.energy() + snareCoupling.potentialEnergy() : 0.0;
+    ledger.cavity_J = air.energy();
+    ledger.dissipated_J += batterHead.stepLoss() + carryHead.stepLoss() + (engaged ? wires.stepLoss() : 0.0);
+}
+
+void Drum::process(float* out, int n)
+{
+    for (int i = 0; i < n; ++i)
+        out[i] = (float) step();
+}
+
+void Drum::reset()
+{
+    batterHead.clear();
+    carryHead.clear();
+    wires.clear();
+    snareCoupling.clear();
+    air.clear();
+    for (auto& m : mallets)
+        m.park();
+    ledger = {};
+    signals = {};
+    dVPrev = 0.0;
+}
+
+} // namespace snaresim

@@ -1,0 +1,118 @@
+#pragma once
+// The assembled model (paper section 2-4, air as the reduced cavity): batter and carry heads,
+// mallets with their contact, snare wires with their collisions and attached ends, and the
+// cavity between the heads. The only class the plugin and the renderer talk to.
+
+#include "Cavity.h"
+#include "DrumConfig.h"
+#include "EnergyLedger.h"
+#include "Mallet.h"
+#include "MalletContact.h"
+#include "Membrane.h"
+#include "SnareContact.h"
+#include "SnareWires.h"
+
+#include <vector>
+
+namespace snaresim
+{
+
+struct SolverStats
+{
+    int lastIterations = 0;     // Newton iterations of the last step that solved a contact
+    int maxIterations = 0;      // since the last resetStats(), mallets and snares
+    int maxSnareIterations = 0; // the snare solve alone (largest over its node groups)
+    long fallbacks = 0;         // steps where a Newton solve missed its cap and fell back
+    int snareContacts = 0;      // snare points touching the carry head after the last step
+    double maxSnarePenetration_m = 0.0; // largest xi since resetStats()
+};
+
+enum class Mic
+{
+    top,    // batter velocity at the top microphone point
+    bottom, // carry-head velocity at the bottom microphone point (snare side)
+    far,    // far-field monopole pressure
+    mix     // the weighted mix that step() returns
+};
+
+// Signals of one step: head velocities at the microphones, far-field pressure, and the mix.
+struct MicSignals
+{
+    double top_m_per_s = 0.0;
+    double bottom_m_per_s = 0.0;
+    double far_Pa = 0.0;        // monopole rho_a / (4 pi r) d^2(net displaced volume)/dt^2
+    double mix = 0.0;           // the output sample
+};
+
+class Drum
+{
+public:
+    // Throws std::invalid_argument (readable message) when the config cannot be simulated.
+    explicit Drum(const DrumConfig& config);
+
+    const DrumConfig& config() const { return cfg; }
+    double sampleRate() const { return cfg.sampleRate_Hz; }
+
+    // Start a strike with the next free mallet (round robin): speed in m/s (> 0, downward),
+    // position as fractions of the radius. Real-time safe.
+    void strike(double speed_m_per_s, double x_frac, double y_frac);
+    void strikeAtDefaultPoint(double speed_m_per_s);
+
+    // Snares on the carry head or thrown off. Real-time safe.
+    void setSnaresEngaged(bool engaged);
+    bool snaresEngaged() const { return engaged; }
+
+    // Advance one sample and return the mixed output sample.
+    double step();
+    const MicSignals& lastSignals() const { return signals; }
+    // The last step's signal of one microphone at audio level (its gain and the output gain
+    // applied); Mic::mix is what step() returned.
+    double output(Mic mic) const;
+
+    // Render n samples of the mix (overwrites out). Real-time safe.
+    void process(float* out, int n);
+
+    // Energy bookkeeping, computed every step while enabled (costs about one extra pass).
+    void setEnergyTracking(bool on) { trackEnergy = on; }
+    const EnergyLedger& energy() const { return ledger; }
+
+    const SolverStats& solverStats() const { return stats; }
+    void resetStats() { stats = {}; }
+
+    // Silence the drum and park the mallets.
+    void reset();
+
+    const Membrane& batter() const { return batterHead; }
+    const Membrane& carry() const { return carryHead; }
+    const SnareWires& snareWires() const { return wires; }
+    const SnareContact& snareContact() const { return snareCoupling; }
+    const Cavity& cavity() const { return air; }
+    const Mallet& mallet(int i) const { return mallets[(size_t) i]; }
+    int numMallets() const { return (int) mallets.size(); }
+
+private:
+    void updateEnergy();
+    void retrieveRisingMallets();
+    double velocityAt(const Membrane& head, const GridDistribution& point) const;
+
+    static constexpr double kRetrieveHeight_m = 0.01; // rising mallets are taken back 1 cm above the head
+
+    DrumConfig cfg;
+    double k;
+    Cavity air;
+    Membrane batterHead, carryHead;
+    SnareWires wires;
+    SnareContact snareCoupling;
+    std::vector<Mallet> mallets;
+    MalletContact malletCoupling;
+    GridDistribution topMic, bottomMic;
+    EnergyLedger ledger;
+    SolverStats stats;
+    MicSignals signals;
+    bool trackEnergy = false;
+    bool engaged = true;
+    int nextMallet = 0;
+    double dVPrev = 0.0; // dV^{n-1}, for the far-field second difference
+};
+
+} // namespace snaresim

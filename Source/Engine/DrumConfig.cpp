@@ -1,0 +1,175 @@
+#include "DrumConfig.h"
+
+#include "Cavity.h"
+#include "Membrane.h"
+#include "SnareWires.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace snaresim
+{
+
+namespace
+{
+void require(bool ok, const char* what, double value)
+{
+    if (ok)
+        return;
+    std::ostringstream msg;
+    msg << what << " (got " << value << ")";
+    throw std::invalid_argument(msg.str());
+}
+
+void validateMembrane(const MembraneSpec& m, double k, double reserve)
+{
+    require(std::isfinite(m.radius_m) && m.radius_m > 0.01 && m.radius_m < 2.0, "head radius must be within 0.01..2 m", m.radius_m);
+    require(std::isfinite(m.density_kg_per_m2) && m.density_kg_per_m2 > 0.0, "head density must be positive", m.density_kg_per_m2);
+    require(std::isfinite(m.tension_N_per_m) && m.tension_N_per_m > 0.0, "head tension must be positive", m.tension_N_per_m);
+    require(std::isfinite(m.sigma0_per_s) && m.sigma0_per_s >= 0.0, "head sigma0 must be >= 0", m.sigma0_per_s);
+    require(std::isfinite(m.sigma1_m2_per_s) && m.sigma1_m2_per_s >= 0.0, "head sigma1 must be >= 0", m.sigma1_m2_per_s);
+    require(std::isfinite(m.gridCoarseness) && m.gridCoarseness >= 1.0,
+            "grid coarseness must be >= 1: a grid finer than the stability bound (eq. 39) is unstable", m.gridCoarseness);
+    require(m.gridTension_N_per_m <= 0.0 || m.gridTension_N_per_m >= m.tension_N_per_m,
+            "the grid's design tension must not be below the tension", m.gridTension_N_per_m);
+    require(m.gridSigma1_m2_per_s < 0.0 || m.gridSigma1_m2_per_s >= m.sigma1_m2_per_s,
+            "the grid's design sigma1 must not be below sigma1", m.gridSigma1_m2_per_s);
+    const double h = Membrane::gridSpacing(m, k, reserve);
+    const double pointsPerRadius = m.radius_m / h;
+    require(pointsPerRadius >= 4.0,
+            "the head grid would have fewer than 4 points per radius at this sample rate and coarseness; raise the sample rate or lower the coarseness",
+            pointsPerRadius);
+    require(pointsPerRadius <= 1500.0, "the head grid would be too large (more than 1500 points per radius)", pointsPerRadius);
+}
+} // namespace
+
+void DrumConfig::validate() const
+{
+    require(std::isfinite(sampleRate_Hz) && sampleRate_Hz >= 1000.0 && sampleRate_Hz <= 768000.0,
+            "sample rate must be within 1000..768000 Hz", sampleRate_Hz);
+    const double k = 1.0 / sampleRate_Hz;
+    require(cavity.model == AirModel::none || cavity.model == AirModel::cavity, "unknown air model", (double) cavity.model);
+    require(std::isfinite(cavity.shellDepth_m) && cavity.shellDepth_m >= 0.02 && cavity.shellDepth_m <= 1.0,
+            "shell depth must be within 0.02..1 m", cavity.shellDepth_m);
+    require(std::isfinite(cavity.gridShellDepth_m) && cavity.gridShellDepth_m >= 0.0, "grid shell depth must be >= 0", cavity.gridShellDepth_m);
+    require(std::isfinite(cavity.airDensity_kg_per_m3) && cavity.airDensity_kg_per_m3 > 0.0, "air density must be positive", cavity.airDensity_kg_per_m3);
+    require(std::isfinite(cavity.soundSpeed_m_per_s) && cavity.soundSpeed_m_per_s > 0.0, "speed of sound must be positive", cavity.soundSpeed_m_per_s);
+    require(std::abs(carry.radius_m - batter.radius_m) < 1e-12, "both heads must have the same radius", carry.radius_m);
+    for (const MembraneSpec* m : { &batter, &carry })
+    {
+        const double reserve = Cavity::kineticReserve(cavity, m->radius_m, m->density_kg_per_m2, k);
+        require(reserve < 0.5, "the cavity is too stiff for this sample rate (shell too shallow)", reserve);
+        validateMembrane(*m, k, reserve);
+    }
+    require(snares.count >= 0 && snares.count <= 64, "number of snare wires must be within 0..64", snares.count);
+    require(std::isfinite(snares.length_m) && snares.length_m > 0.05, "snare length must be above 0.05 m", snares.length_m);
+    require(std::isfinite(snares.spacing_m) && snares.spacing_m >= 0.0, "snare spacing must be >= 0", snares.spacing_m);
+    require(std::isfinite(snares.linearDensity_kg_per_m) && snares.linearDensity_kg_per_m > 0.0, "snare density must be positive", snares.linearDensity_kg_per_m);
+    require(std::isfinite(snares.tension_N) && snares.tension_N > 0.0, "snare tension must be positive", snares.tension_N);
+    require(snares.gridTension_N <= 0.0 || snares.gridTension_N >= snares.tension_N, "the snare grid's design tension must not be below the tension", snares.gridTension_N);
+    require(std::isfinite(snares.sigma0_per_s) && snares.sigma0_per_s >= 0.0, "snare sigma0 must be >= 0", snares.sigma0_per_s);
+    require(std::isfinite(snares.sigma1_m2_per_s) && snares.sigma1_m2_per_s >= 0.0, "snare sigma1 must be >= 0", snares.sigma1_m2_per_s);
+    require(std::isfinite(snares.stiffness) && snares.stiffness > 0.0, "snare contact stiffness must be positive", snares.stiffness);
+    require(std::isfinite(snares.exponent) && snares.exponent >= 1.0 && snares.exponent <= 4.0, "snare contact exponent must be within 1..4", snares.exponent);
+    if (snares.count > 0)
+    {
+        const SnareSpec fitted = fittedSnares();
+        require(fitted.length_m >= 0.5 * snares.length_m && fitted.length_m >= 0.1,
+                "the snare wires do not fit on the carry head's grid at this sample rate and coarseness", fitted.length_m);
+        const double intervals = fitted.length_m / SnareWires::minimumSpacing(snares, k);
+        require(intervals >= 4.0, "the snare wire grid would have fewer than 4 intervals at this sample rate", intervals);
+        require(intervals <= 4000.0, "the snare wire grid would be too large", intervals);
+    }
+    require(std::isfinite(mallet.mass_kg) && mallet.mass_kg > 0.0, "mallet mass must be positive", mallet.mass_kg);
+    require(std::isfinite(mallet.stiffness) && mallet.stiffness > 0.0, "mallet stiffness must be positive", mallet.stiffness);
+    require(std::isfinite(mallet.exponent) && mallet.exponent >= 1.0 && mallet.exponent <= 4.0,
+            "mallet exponent alpha must be within 1..4", mallet.exponent);
+    require(std::isfinite(mallet.contactRadius_m) && mallet.contactRadius_m >= 0.0 && mallet.contactRadius_m < 0.5 * batter.radius_m,
+            "mallet contact radius must be within 0..R/2", mallet.contactRadius_m);
+    require(numMallets >= 1 && numMallets <= 16, "number of mallets must be within 1..16", numMallets);
+    require(std::isfinite(strikeSpeedMax_m_per_s) && strikeSpeedMax_m_per_s > 0.0 && strikeSpeedMax_m_per_s <= 50.0,
+            "maximum strike speed must be within 0..50 m/s", strikeSpeedMax_m_per_s);
+    require(std::isfinite(strikeRadius_frac) && strikeRadius_frac >= 0.0 && strikeRadius_frac <= 0.95,
+            "strike position must be within 0..0.95 R", strikeRadius_frac);
+    for (double r : { std::hypot(mics.topX_frac, mics.topY_frac), std::hypot(mics.bottomX_frac, mics.bottomY_frac) })
+        require(std::isfinite(r) && r <= 0.95, "microphone points must lie within 0.95 R of the centre", r);
+    require(std::isfinite(mics.farDistance_m) && mics.farDistance_m > 0.0, "far-field distance must be positive", mics.farDistance_m);
+    for (double g : { mics.topGain, mics.bottomGain, mics.farGain, mics.mixTop, mics.mixBottom, mics.mixFar })
+        require(std::isfinite(g), "microphone gains must be finite", g);
+    require(std::isfinite(outputGain), "output gain must be finite", outputGain);
+}
+
+SnareSpec DrumConfig::fittedSnares() const
+{
+    SnareSpec s = snares;
+    const double k = 1.0 / sampleRate_Hz;
+    const double hc = Membrane::gridSpacing(carry, k, Cavity::kineticReserve(cavity, carry.radius_m, carry.density_kg_per_m2, k));
+    const double allowed = carry.radius_m - 1.5 * hc;
+    const double reach = std::hypot(0.5 * s.length_m, 0.5 * (s.count - 1) * s.spacing_m);
+    if (reach > allowed && reach > 0.0)
+    {
+        const double shrink = std::max(0.0, allowed) / reach;
+        s.length_m *= shrink;
+        s.spacing_m *= shrink;
+    }
+    return s;
+}
+
+DrumConfig DrumConfig::lossless() const
+{
+    DrumConfig c = *this;
+    c.batter.sigma0_per_s = 0.0;
+    c.batter.sigma1_m2_per_s = 0.0;
+    c.carry.sigma0_per_s = 0.0;
+    c.carry.sigma1_m2_per_s = 0.0;
+    c.snares.sigma0_per_s = 0.0;
+    c.snares.sigma1_m2_per_s = 0.0;
+    return c;
+}
+
+DrumConfig makeDrumConfig(const ParameterSet& p, double sampleRate_Hz)
+{
+    DrumConfig c;
+    c.sampleRate_Hz = sampleRate_Hz;
+    c.batter.tension_N_per_m = p.get(ParamId::batterTension);
+    c.batter.sigma0_per_s = 3.0 * std::log(10.0) / p.get(ParamId::batterDecay);
+    c.batter.sigma1_m2_per_s = p.get(ParamId::batterHighDamping);
+    // The grid is designed for the largest values the controls allow (physics-notes section 1),
+    // so moving them never needs a new grid.
+    c.batter.gridTension_N_per_m = spec(ParamId::batterTension).maxValue;
+    c.batter.gridSigma1_m2_per_s = spec(ParamId::batterHighDamping).maxValue;
+    c.batter.gridCoarseness = p.get(ParamId::gridCoarseness);
+    c.strikeSpeedMax_m_per_s = p.get(ParamId::strikeSpeedMax);
+    c.mallet.mass_kg = p.get(ParamId::malletMass);
+    c.mallet.stiffness = p.get(ParamId::malletStiffness);
+    c.mallet.exponent = p.get(ParamId::malletExponent);
+    c.mallet.contactRadius_m = p.get(ParamId::malletContactRadius);
+    c.strikeRadius_frac = p.get(ParamId::strikePosition);
+    const double listen = p.get(ParamId::listenPosition);
+    c.mics.topX_frac = listen * std::cos(0.6);
+    c.mics.topY_frac = listen * std::sin(0.6);
+    c.outputGain = std::pow(10.0, p.get(ParamId::outputGain) / 20.0);
+    c.carry.tension_N_per_m = p.get(ParamId::carryTension);
+    c.carry.gridTension_N_per_m = spec(ParamId::carryTension).maxValue;
+    c.carry.gridSigma1_m2_per_s = spec(ParamId::batterHighDamping).maxValue;
+    c.carry.gridCoarseness = p.get(ParamId::gridCoarseness);
+    c.snares.tension_N = p.get(ParamId::snareTension);
+    c.snares.gridTension_N = spec(ParamId::snareTension).maxValue;
+    c.snares.engaged = p.get(ParamId::snaresEngaged) >= 0.5;
+    c.snares.count = (int) std::lround(p.get(ParamId::snareCount));
+    c.cavity.shellDepth_m = p.get(ParamId::shellDepth);
+    c.cavity.gridShellDepth_m = spec(ParamId::shellDepth).minValue;
+    c.cavity.model = p.get(ParamId::airModel) >= 0.5 ? AirModel::cavity : AirModel::none;
+    c.validate();
+    return c;
+}
+
+double strikeSpeedFromVelocity(int midiVelocity, double maxSpeed_m_per_s)
+{
+    const int v = std::clamp(midiVelocity, 1, 127);
+    return maxSpeed_m_per_s * std::pow(10.0, -1.6 * (127 - v) / 126.0);
+}
+
+} // namespace snaresim

@@ -1,0 +1,168 @@
+#include "MalletContact.h"
+
+#include "CollisionSolve.h"
+
+#include <Eigen/LU>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace snaresim
+{
+
+namespace
+{
+// h^2 g_i^T g_j for two patches (index lists are short; no allocation).
+double overlap(const GridDistribution& p, const GridDistribution& q, double h2)
+{
+    double s = 0.0;
+    for (int i = 0; i < p.size; ++i)
+        for (int j = 0; j < q.size; ++j)
+            if (p.index[(size_t) i] == q.index[(size_t) j])
+                s += p.g[(size_t) i] * q.g[(size_t) j];
+    return h2 * s;
+}
+} // namespace
+
+ContactSolveResult MalletContact::step(Membrane& head, std::span<Mallet> mallets)
+{
+    ContactSolveResult result;
+    const double h2 = head.grid().spacing() * head.grid().spacing();
+    const double kk = head.timeStep() * head.timeStep();
+
+    // Free predictions: z* = 2 z^n - z^{n-1} (eq. 43), eta* = h^2 g^T w* - z*.
+    int m = 0;
+    for (int i = 0; i < (int) mallets.size(); ++i)
+    {
+        Mallet& ml = mallets[(size_t) i];
+        if (! ml.inPlay())
+            continue;
+        const double zFree = 2.0 * ml.zNow - ml.zPrev;
+        ml.zNext = zFree;
+        ml.etaNext = head.sampleNext(ml.patch()) - zFree;
+        // Forces are >= 0 and Gamma >= 0 elementwise, so a mallet that is apart at n-1 and
+        // stays apart without forces stays apart with them.
+        if ((ml.etaPrev > 0.0 || ml.etaNext > 0.0) && m < maxMallets)
+            members[m++] = i;
+    }
+    if (m == 0)
+        return result;
+
+    // eq. (45): Gamma_ij = k^2/(rho q) h^2 g_i^T g_j + delta_ij k^2/M_i,
+    // a = eta^{n-1}, b = eta^{n-1} - eta*  (eq. 44: r + Gamma psi(r) + b = 0).
+    gamma.resize(m, m);
+    a.resize(m);
+    b.resize(m);
+    r.resize(m);
+    f.resize(m);
+    for (int i = 0; i < m; ++i)
+    {
+        const Mallet& mi = mallets[(size_t) members[i]];
+        a(i) = mi.etaPrev;
+        b(i) = mi.etaPrev - mi.etaNext;
+        for (int j = i; j < m; ++j)
+            gamma(i, j) = gamma(j, i) = head.forceGain() * overlap(mi.patch(), mallets[(size_t) members[j]].patch(), h2);
+        gamma(i, i) += kk / mi.mass();
+    }
+
+    bool coupled = false;
+    for (int i = 0; i < m && ! coupled; ++i)
+        for (int j = i + 1; j < m; ++j)
+            coupled = coupled || gamma(i, j) != 0.0;
+
+    if (! coupled)
+    {
+        for (int i = 0; i < m; ++i)
+        {
+            const Mallet& mi = mallets[(size_t) members[i]];
+            r(i) = solveCollision(mi.potential(), gamma(i, i), a(i), b(i), result.iterations);
+        }
+    }
+    else if (! solveJoint(mallets, m, result.iterations))
+    {
+        result.fallback = true;
+        solveGaussSeidel(mallets, m, result.iterations);
+    }
+
+    // Forces from the converged r (eq. 27), applied to the head (eq. 26: -g f) and mallet (eq. 43).
+    for (int i = 0; i < m; ++i)
+    {
+        Mallet& mi = mallets[(size_t) members[i]];
+        const double force = mi.potential().psi(r(i), a(i));
+        f(i) = std::isfinite(force) ? force : 0.0;
+        head.applyForce(mi.patch(), -f(i));
+        mi.zNext += kk * f(i) / mi.mass();
+    }
+    for (int i = 0; i < m; ++i)
+    {
+        Mallet& mi = mallets[(size_t) members[i]];
+        mi.etaNext = head.sampleNext(mi.patch()) - mi.zNext;
+    }
+    return result;
+}
+
+bool MalletContact::solveJoint(std::span<Mallet> mallets, int m, int& iterations)
+{
+    // Newton on F(r) = r + Gamma psi(r) + b, J = I + Gamma diag(psi'(r)), from r = -b.
+    Vec psi(m), dpsi(m), F(m), delta(m);
+    Mat J(m, m);
+    r = -b;
+    for (int it = 0; it < maxNewtonIterations; ++it)
+    {
+        ++iterations;
+        for (int i = 0; i < m; ++i)
+        {
+            const auto& law = mallets[(size_t) members[i]].potential();
+            psi(i) = law.psi(r(i), a(i));
+            dpsi(i) = law.dpsi(r(i), a(i));
+        }
+        F = r + gamma * psi + b;
+        J = gamma * dpsi.asDiagonal();
+        J.diagonal().array() += 1.0;
+        delta = J.partialPivLu().solve(F);
+        if (! delta.allFinite())
+            return false;
+        r -= delta;
+        const double scale = r.cwiseAbs().maxCoeff() + a.cwiseAbs().maxCoeff() + b.cwiseAbs().maxCoeff();
+        if (delta.cwiseAbs().maxCoeff() <= tolerance * scale)
+            return true;
+    }
+    return false;
+}
+
+void MalletContact::solveGaussSeidel(std::span<Mallet> mallets, int m, int& iterations)
+{
+    // Nonlinear Gauss-Seidel: each mallet's scalar equation solved in its bracket with the
+    // others' forces fixed. It is coordinate descent on a strictly convex function, so it
+    // converges; the sweep cap bounds the work and every iterate is finite.
+    r = -b;
+    for (int sweep = 0; sweep < maxFallbackSweeps; ++sweep)
+    {
+        double change = 0.0, scale = 0.0;
+        for (int i = 0; i < m; ++i)
+        {
+            double bi = b(i);
+            for (int j = 0; j < m; ++j)
+                if (j != i)
+                    bi += gamma(i, j) * mallets[(size_t) members[j]].potential().psi(r(j), a(j));
+            const double ri = solveCollision(mallets[(size_t) members[i]].potential(), gamma(i, i), a(i), bi, iterations);
+            change = std::max(change, std::abs(ri - r(i)));
+            scale = std::max(scale, std::abs(ri) + std::abs(a(i)) + std::abs(bi));
+            r(i) = ri;
+        }
+        if (change <= tolerance * scale)
+            return;
+    }
+}
+
+double MalletContact::potentialEnergy(std::span<const Mallet> mallets)
+{
+    double e = 0.0;
+    for (const auto& ml : mallets)
+        if (ml.inPlay())
+            e += 0.5 * (ml.potential().phi(ml.etaNext) + ml.potential().phi(ml.etaNow)); // eq. (37)
+    return e;
+}
+
+} // namespace snaresim

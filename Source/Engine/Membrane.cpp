@@ -1,0 +1,181 @@
+#include "Membrane.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace snaresim
+{
+
+double Membrane::gridSpacing(const MembraneSpec& s, double k, double reserve)
+{
+    const double T = s.gridTension_N_per_m > 0.0 ? s.gridTension_N_per_m : s.tension_N_per_m;
+    const double sigma1 = s.gridSigma1_m2_per_s >= 0.0 ? s.gridSigma1_m2_per_s : s.sigma1_m2_per_s;
+    // eq. (39): h^2 >= 2 k^2 T / rho + 8 sigma1 k
+    return s.gridCoarseness * std::sqrt((2.0 * k * k * T / s.density_kg_per_m2 + 8.0 * sigma1 * k) / (1.0 - reserve));
+}
+
+Membrane::Membrane(const MembraneSpec& s, double timeStep, double reserve)
+    : g(s.radius_m, gridSpacing(s, timeStep, reserve)), k(timeStep), kk(timeStep * timeStep), h(g.spacing()),
+      rho(s.density_kg_per_m2),
+      maxT(s.gridTension_N_per_m > 0.0 ? s.gridTension_N_per_m : s.tension_N_per_m),
+      maxSigma1(s.gridSigma1_m2_per_s >= 0.0 ? s.gridSigma1_m2_per_s : s.sigma1_m2_per_s)
+{
+    const int n = g.width();
+    rowBegin.assign((size_t) n, 1);
+    rowEnd.assign((size_t) n, 1); // empty rows: begin == end
+    for (int iy = 1; iy < n - 1; ++iy)
+    {
+        int first = -1, last = -1;
+        for (int ix = 1; ix < n - 1; ++ix)
+            if (g.mask()[(size_t) g.index(ix, iy)] != 0.0)
+            {
+                if (first < 0)
+                    first = ix;
+                last = ix;
+            }
+        if (first >= 0)
+        {
+            rowBegin[(size_t) iy] = first;
+            rowEnd[(size_t) iy] = last + 1;
+        }
+    }
+    wNext.assign((size_t) g.numNodes(), 0.0);
+    wNow = wNext;
+    wPrev = wNext;
+    setCoefficients(s.tension_N_per_m, s.sigma0_per_s, s.sigma1_m2_per_s);
+}
+
+void Membrane::setCoefficients(double tension, double s0, double s1)
+{
+    T = std::clamp(tension, 0.0, maxT);
+    sigma0 = std::max(0.0, s0);
+    sigma1 = std::clamp(s1, 0.0, maxSigma1);
+    q = 1.0 + sigma0 * k;
+    const double lambda2 = kk * T / (rho * h * h);
+    const double s = 2.0 * sigma1 * k / (h * h);
+    // w+ = [2w - (1 - sigma0 k) w- + lambda^2 L w + s (L w - L w-)] / q, L = unscaled 5-point Laplacian
+    a0 = (2.0 - 4.0 * lambda2 - 4.0 * s) / q;
+    a1 = (lambda2 + s) / q;
+    b0 = -(1.0 - sigma0 * k - 4.0 * s) / q;
+    b1 = -s / q;
+}
+
+void Membrane::computeFree(double pressure)
+{
+    const int n = g.width();
+    const double* __restrict w = wNow.data();
+    const double* __restrict wp = wPrev.data();
+    const double* __restrict mask = g.mask().data();
+    double* __restrict out = wNext.data();
+    const double c0 = a0, c1 = a1, d0 = b0, d1 = b1;
+    const double push = forceGain() * pressure; // eq. (22) with the pressure term, force density p
+    for (int iy = 1; iy < n - 1; ++iy)
+    {
+        const int base = iy * n;
+        const int end = base + rowEnd[(size_t) iy];
+        for (int i = base + rowBegin[(size_t) iy]; i < end; ++i)
+        {
+            const double nb = w[i - 1] + w[i + 1] + w[i - n] + w[i + n];
+            const double nbp = wp[i - 1] + wp[i + 1] + wp[i - n] + wp[i + n];
+            out[i] = mask[i] * (c0 * w[i] + c1 * nb + d0 * wp[i] + d1 * nbp + push);
+        }
+    }
+}
+
+void Membrane::applyForce(const GridDistribution& d, double force)
+{
+    const double c = forceGain() * force;
+    for (int j = 0; j < d.size; ++j)
+        wNext[(size_t) d.index[(size_t) j]] += c * d.g[(size_t) j];
+}
+
+double Membrane::sample(const GridDistribution& d, const std::vector<double>& w) const
+{
+    double s = 0.0;
+    for (int j = 0; j < d.size; ++j)
+        s += d.g[(size_t) j] * w[(size_t) d.index[(size_t) j]];
+    return h * h * s;
+}
+
+double Membrane::sweptVolumeNext() const
+{
+    // Eight running sums, so the additions pipeline and vectorise.
+    const int n = g.width();
+    double acc[8] = {};
+    for (int iy = 1; iy < n - 1; ++iy)
+    {
+        const double* __restrict row = wNext.data() + (size_t) (iy * n);
+        const int end = rowEnd[(size_t) iy];
+        int ix = rowBegin[(size_t) iy];
+        for (; ix + 8 <= end; ix += 8)
+            for (int j = 0; j < 8; ++j)
+                acc[j] += row[ix + j];
+        for (; ix < end; ++ix)
+            acc[0] += row[ix];
+    }
+    return h * h * (((acc[0] + acc[4]) + (acc[1] + acc[5])) + ((acc[2] + acc[6]) + (acc[3] + acc[7])));
+}
+
+double Membrane::energy() const
+{
+    const int n = g.width();
+    double kinetic = 0.0, potential = 0.0, sigma1Term = 0.0;
+    for (int iy = 0; iy < n - 1; ++iy)
+        for (int ix = 0; ix < n - 1; ++ix)
+        {
+            const size_t i = (size_t) (iy * n + ix);
+            const double v = wNext[i] - wNow[i];
+            kinetic += v * v;
+            const double dxNow = wNow[i + 1] - wNow[i], dxNext = wNext[i + 1] - wNext[i];
+            const double dyNow = wNow[i + (size_t) n] - wNow[i], dyNext = wNext[i + (size_t) n] - wNext[i];
+            potential += dxNow * dxNext + dyNow * dyNext;
+            const double dvx = dxNext - dxNow, dvy = dyNext - dyNow;
+            sigma1Term += dvx * dvx + dvy * dvy;
+        }
+    // eq. (35): h^2 [rho/2 |dt+ w|^2 + T/2 (Dx+ w)(et+ Dx+ w) + ...]; the gradient sums carry
+    // 1/h^2, which cancels the h^2.
+    return 0.5 * rho * h * h * kinetic / kk + 0.5 * T * potential - 0.5 * rho * sigma1 * sigma1Term / k;
+}
+
+double Membrane::stepLoss() const
+{
+    if (sigma0 == 0.0 && sigma1 == 0.0)
+        return 0.0;
+    const int n = g.width();
+    double v2 = 0.0, grad2 = 0.0;
+    for (int iy = 0; iy < n - 1; ++iy)
+        for (int ix = 0; ix < n - 1; ++ix)
+        {
+            const size_t i = (size_t) (iy * n + ix);
+            const double d = wNext[i] - wPrev[i];
+            v2 += d * d;
+            const double dx = (wNext[i + 1] - wPrev[i + 1]) - d;
+            const double dy = (wNext[i + (size_t) n] - wPrev[i + (size_t) n]) - d;
+            grad2 += dx * dx + dy * dy;
+        }
+    // k q^n = k [2 rho sigma0 h^2 |dt. w|^2 + 2 rho sigma1 |grad dt. w|^2], dt. w = (w+ - w-) / 2k
+    return k * (2.0 * rho * sigma0 * h * h * v2 + 2.0 * rho * sigma1 * grad2) / (4.0 * kk);
+}
+
+void Membrane::advance()
+{
+    std::swap(wPrev, wNow);
+    std::swap(wNow, wNext);
+}
+
+void Membrane::clear()
+{
+    std::fill(wNext.begin(), wNext.end(), 0.0);
+    std::fill(wNow.begin(), wNow.end(), 0.0);
+    std::fill(wPrev.begin(), wPrev.end(), 0.0);
+}
+
+bool Membrane::isFinite() const
+{
+    for (double v : wNow)
+        if (! std::isfinite(v))
+            return false;
+    return true;
+}
+
+} // namespace snaresim

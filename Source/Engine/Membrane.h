@@ -1,0 +1,78 @@
+#pragma once
+// A head: the lossy 2D wave equation (eq. 2-4) on a clipped square grid, scheme (22)/(24):
+//   rho dtt w = T D w - 2 rho sigma0 dt. w + 2 rho sigma1 dt- D w + forces.
+// Its numerical energy (eq. 35) gains the term -(rho sigma1 k / 2) |grad dt+ w|^2 from the
+// backward-difference loss; with it, h^{n+1/2} - h^{n-1/2} = -k q^n exactly, q^n >= 0.
+
+#include "CircularGrid.h"
+#include "DrumConfig.h"
+
+#include <vector>
+
+namespace snaresim
+{
+
+class Membrane
+{
+public:
+    // kineticReserve: share of the kinetic energy kept for an explicit coupling (the cavity).
+    Membrane(const MembraneSpec& spec, double timeStep_s, double kineticReserve = 0.0);
+
+    // Grid spacing from the stability bound eq. (39), for the design tension and sigma1,
+    // widened by 1/sqrt(1 - kineticReserve), times the coarseness factor.
+    static double gridSpacing(const MembraneSpec& spec, double timeStep_s, double kineticReserve = 0.0);
+
+    const CircularGrid& grid() const { return g; }
+    double density() const { return rho; }
+    double tension() const { return T; }
+    double timeStep() const { return k; }
+
+    // Change tension and losses without a new grid (values above the grid's design are clamped).
+    void setCoefficients(double tension_N_per_m, double sigma0_per_s, double sigma1_m2_per_s);
+
+    // w^{n+1} from w^n, w^{n-1} with no contact force (eq. 22), with a uniform pressure p
+    // (Pa, pushing up) from the cavity acting at time n.
+    void computeFree(double pressure_Pa = 0.0);
+    // Add an external force f (N, positive up) spread by g to w^{n+1}: w += k^2/(rho q) g f.
+    void applyForce(const GridDistribution& d, double force_N);
+    // k^2 / (rho q): how far w^{n+1} moves per unit force density.
+    double forceGain() const { return kk / (rho * q); }
+
+    // h^2 g^T w at time n+1, n or n-1.
+    double sampleNext(const GridDistribution& d) const { return sample(d, wNext); }
+    double sampleNow(const GridDistribution& d) const { return sample(d, wNow); }
+    double samplePrev(const GridDistribution& d) const { return sample(d, wPrev); }
+
+    // Energy h^{n+1/2} of eq. (35) (with the sigma1 term) from w^{n+1}, w^n.
+    double energy() const;
+    // k q^n: energy removed by the losses over the step from n-1/2 to n+1/2.
+    double stepLoss() const;
+
+    // w^{n+1} at one node, for couplings that act node by node.
+    double nextAt(int node) const { return wNext[(size_t) node]; }
+    void setNextAt(int node, double value) { wNext[(size_t) node] = value; }
+    // h^2 sum(w) at n+1: the volume swept by the head.
+    double sweptVolumeNext() const;
+
+    // Rotate time levels after a completed step.
+    void advance();
+    void clear();
+
+    const std::vector<double>& displacement() const { return wNow; }      // w^n
+    const std::vector<double>& previousDisplacement() const { return wPrev; } // w^{n-1}
+    bool isFinite() const;
+
+private:
+    double sample(const GridDistribution& d, const std::vector<double>& w) const;
+
+    CircularGrid g;
+    double k, kk, h;
+    double rho, T = 0, sigma0 = 0, sigma1 = 0;
+    double maxT, maxSigma1;
+    double q = 1;
+    double a0 = 0, a1 = 0, b0 = 0, b1 = 0; // stencil coefficients
+    std::vector<int> rowBegin, rowEnd;      // columns holding interior nodes, per row
+    std::vector<double> wNext, wNow, wPrev;
+};
+
+} // namespace snaresim

@@ -1,0 +1,88 @@
+// The head: grid from the stability bound (eq. 39) and its modes against the ideal membrane.
+
+#include "SpectrumPeaks.h"
+#include "TestDrums.h"
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <numbers>
+#include <vector>
+
+using namespace snaresim;
+
+TEST_CASE("the head grid follows the stability bound eq. 39", "[membrane]")
+{
+    const DrumConfig cfg = test::losslessHead();
+    const Membrane head(cfg.batter, 1.0 / cfg.sampleRate_Hz);
+    const double c = std::sqrt(cfg.batter.tension_N_per_m / cfg.batter.density_kg_per_m2);
+    // h = sqrt(2) c k at the bound: 2.98 mm and about 11 000 points (physics-notes section 2).
+    CHECK(head.grid().spacing() == Approx(std::sqrt(2.0) * c / 44100.0).epsilon(1e-12));
+    CHECK(head.grid().spacing() == Approx(2.98e-3).epsilon(0.01));
+    CHECK(head.grid().numInterior() == Approx(std::numbers::pi * std::pow(0.1778 / head.grid().spacing(), 2)).epsilon(0.03));
+
+    MembraneSpec coarse = cfg.batter;
+    coarse.gridCoarseness = 2.0;
+    CHECK(Membrane(coarse, 1.0 / 44100.0).grid().spacing() == Approx(2.0 * head.grid().spacing()));
+}
+
+TEST_CASE("impossible grids are refused with a clear message", "[membrane]")
+{
+    DrumConfig finer = test::losslessHead();
+    finer.batter.gridCoarseness = 0.9; // below the stability bound
+    CHECK_THROWS_WITH(Drum(finer), Catch::Contains("stability bound"));
+
+    DrumConfig tooCoarse = test::losslessHead();
+    tooCoarse.sampleRate_Hz = 8000.0;
+    tooCoarse.batter.gridCoarseness = 4.0;
+    CHECK_THROWS_WITH(Drum(tooCoarse), Catch::Contains("fewer than 4 points"));
+
+    DrumConfig badRate = test::losslessHead();
+    badRate.sampleRate_Hz = 0.0;
+    CHECK_THROWS_WITH(Drum(badRate), Catch::Contains("sample rate"));
+
+    DrumConfig badTension = test::losslessHead();
+    badTension.batter.tension_N_per_m = -3.0;
+    CHECK_THROWS_AS(Drum(badTension), std::invalid_argument);
+}
+
+TEST_CASE("the lossless head's modes match the ideal membrane (Bessel zeros)", "[membrane]")
+{
+    DrumConfig cfg = test::losslessHead();
+    cfg.mics.topX_frac = 0.5 * std::cos(0.35); // off-centre and off every nodal line of the first five modes
+    cfg.mics.topY_frac = 0.5 * std::sin(0.35);
+    cfg.mics.mixTop = 1.0; // listen to the batter alone
+    cfg.mics.mixBottom = cfg.mics.mixFar = 0.0;
+    Drum drum(cfg);
+    drum.strike(2.0, 0.55, 0.0); // off-centre strike
+
+    const double fs = cfg.sampleRate_Hz;
+    for (int n = 0; n < 2000 && drum.mallet(0).inPlay(); ++n) // past the contact
+        drum.step();
+    REQUIRE_FALSE(drum.mallet(0).inPlay());
+    std::vector<double> x(1u << 16);
+    for (auto& v : x)
+        v = drum.step();
+
+    const double c = std::sqrt(cfg.batter.tension_N_per_m / cfg.batter.density_kg_per_m2);
+    const double f01 = 2.4048 * c / (2.0 * std::numbers::pi * cfg.batter.radius_m);
+    // Ideal circular membrane, Bessel zeros over j01: (0,1) (1,1) (2,1) (0,2) (3,1)
+    const double ratios[] = { 1.0, 3.8317 / 2.4048, 5.1356 / 2.4048, 5.5201 / 2.4048, 6.3802 / 2.4048 };
+    // The five strongest peaks below 2.8 f01, in ascending frequency.
+    const auto spectrum = test::hannSpectrum(x);
+    const auto found = test::peaks(spectrum, fs / (2.0 * (double) spectrum.size()), 0.5 * f01, 2.8 * f01);
+    REQUIRE(found.size() >= 5);
+    std::vector<double> peaks;
+    for (int i = 0; i < 5; ++i)
+        peaks.push_back(found[(size_t) i].frequency);
+    std::sort(peaks.begin(), peaks.end());
+    for (int i = 0; i < 5; ++i)
+    {
+        INFO("mode " << i << ": " << peaks[(size_t) i] << " Hz, ratio " << peaks[(size_t) i] / peaks[0] << " vs " << ratios[i]);
+        CHECK(peaks[(size_t) i] / peaks[0] == Approx(ratios[i]).epsilon(0.01));
+    }
+    INFO("fundamental " << peaks[0] << " Hz vs 2.4048 c / (2 pi R) = " << f01 << " Hz");
+    CHECK(peaks[0] == Approx(f01).epsilon(0.01));
+}

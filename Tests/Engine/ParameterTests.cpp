@@ -1,0 +1,65 @@
+// The one parameter declaration: consistent, in range, and mapped onto the physics.
+
+#include "DrumConfig.h"
+#include "Presets.h"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <set>
+#include <string>
+
+using namespace snaresim;
+
+TEST_CASE("every parameter has a unique key and a default inside its range", "[parameters]")
+{
+    std::set<std::string> keys;
+    for (const auto& s : parameterSpecs())
+    {
+        INFO(std::string(s.key));
+        CHECK(keys.insert(std::string(s.key)).second);
+        CHECK(s.minValue < s.maxValue);
+        CHECK(s.defaultValue >= s.minValue);
+        CHECK(s.defaultValue <= s.maxValue);
+        CHECK(findParameter(s.key) == s.id);
+        CHECK(describeParameters().find(std::string(s.key)) != std::string::npos);
+    }
+    CHECK_FALSE(findParameter("no_such_parameter").has_value());
+}
+
+TEST_CASE("out-of-range and non-finite values are refused or clamped", "[parameters]")
+{
+    ParameterSet p;
+    CHECK_THROWS_AS(p.set(ParamId::batterTension, 1.0e6), std::out_of_range);
+    CHECK_THROWS_AS(p.set(ParamId::batterTension, std::nan("")), std::out_of_range);
+    CHECK(p.get(ParamId::batterTension) == spec(ParamId::batterTension).defaultValue);
+    p.setClamped(ParamId::batterTension, 1.0e6);
+    CHECK(p.get(ParamId::batterTension) == spec(ParamId::batterTension).maxValue);
+    p.setClamped(ParamId::batterTension, std::nan(""));
+    CHECK(p.get(ParamId::batterTension) == spec(ParamId::batterTension).defaultValue);
+}
+
+TEST_CASE("the defaults give the physics-notes drum", "[parameters]")
+{
+    const DrumConfig c = makeDrumConfig(ParameterSet {}, 48000.0);
+    CHECK(c.batter.tension_N_per_m == 3050.0);
+    CHECK(c.batter.density_kg_per_m2 == Approx(0.353));
+    CHECK(c.mallet.mass_kg == 0.028);
+    CHECK(c.batter.sigma0_per_s == Approx(3.0 * std::log(10.0) / 1.5));
+    // The grid is designed for the largest tension the control allows.
+    CHECK(c.batter.gridTension_N_per_m == spec(ParamId::batterTension).maxValue);
+}
+
+TEST_CASE("presets are found by name and apply their values", "[parameters]")
+{
+    ParameterSet p;
+    REQUIRE(applyPreset("tight funk", p));
+    CHECK(p.get(ParamId::batterTension) > spec(ParamId::batterTension).defaultValue);
+    CHECK_FALSE(applyPreset("no such preset", p));
+    for (const auto& preset : factoryPresets())
+    {
+        ParameterSet q;
+        REQUIRE(applyPreset(preset.name, q));
+        CHECK_NOTHROW(makeDrumConfig(q, 44100.0));
+    }
+}

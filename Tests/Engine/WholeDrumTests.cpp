@@ -1,0 +1,296 @@
+// The whole drum (paper section 2-4 with the reduced cavity): energy, collisions, the snares'
+// sound, and the cavity's coupling of the heads.
+
+#include "SpectrumPeaks.h"
+#include "TestDrums.h"
+
+#include <Eigen/Dense>
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+using namespace snaresim;
+
+namespace
+{
+// Runs a lossless drum for `steps` after a strike and returns the largest relative variation
+// of the energy balance (the total, plus what left with the retrieved mallet).
+double losslessDrift(DrumConfig cfg, double speed, int steps, SolverStats& stats)
+{
+    Drum drum(cfg.lossless());
+    drum.setEnergyTracking(true);
+    drum.strike(speed, 0.3, 0.0);
+    const double e0 = drum.energy().total(), b0 = drum.energy().balance();
+    double drift = 0.0;
+    for (int n = 0; n < steps; ++n)
+    {
+        drum.step();
+        drift = std::max(drift, std::abs(drum.energy().balance() - b0) / e0);
+    }
+    stats = drum.solverStats();
+    return drift;
+}
+} // namespace
+
+TEST_CASE("lossless whole drum conserves energy to round-off (20 snares, cavity)", "[drum][energy]")
+{
+    SolverStats stats;
+    const double drift = losslessDrift(test::wholeDrum(), 5.0, 44100, stats);
+    INFO("relative energy variation " << drift << ", max Newton iterations " << stats.maxIterations);
+    CHECK(drift < 1e-11);
+    CHECK(stats.fallbacks == 0);
+}
+
+TEST_CASE("lossless whole drum with the paper's 7 snares and mallet conserves energy", "[drum][energy]")
+{
+    DrumConfig cfg = test::wholeDrum();
+    cfg.snares.count = 7;
+    cfg.mallet.mass_kg = 0.028; // paper section 5.1: M = 0.028 kg at -5 m/s
+    SolverStats stats;
+    const double drift = losslessDrift(cfg, 5.0, 44100, stats);
+    INFO("relative energy variation " << drift);
+    CHECK(drift < 1e-11);
+}
+
+TEST_CASE("with losses the whole drum's energy never rises and energy + losses is constant", "[drum][energy]")
+{
+    Drum drum(test::wholeDrum());
+    drum.setEnergyTracking(true);
+    drum.strike(5.0, 0.3, 0.0);
+    const double e0 = drum.energy().total(), b0 = drum.energy().balance();
+    double previous = e0, worstRise = 0.0, worstBalance = 0.0;
+    for (int n = 0; n < 44100; ++n)
+    {
+        drum.step();
+        const double e = drum.energy().total();
+        worstRise = std::max(worstRise, (e - previous) / e0);
+        worstBalance = std::max(worstBalance, std::abs(drum.energy().balance() - b0) / e0);
+        previous = e;
+    }
+    INFO("largest rise " << worstRise << ", balance drift " << worstBalance);
+    CHECK(worstRise <= 1e-15);
+    CHECK(worstBalance < 1e-10);
+    CHECK(drum.energy().dissipated_J > 0.0);
+}
+
+TEST_CASE("snares lose contact and strike the head again, with small penetration", "[drum][snares]")
+{
+    const DrumConfig cfg = test::wholeDrum();
+    Drum drum(cfg);
+    drum.strike(5.0, 0.3, 0.0);
+    const int points = drum.snareContact().numPoints();
+    std::vector<int> state(points, 0); // 0 never touched, 1 touching, 2 apart after touching, 3 struck again
+    int restrikes = 0;
+    const int steps20ms = (int) (0.020 * cfg.sampleRate_Hz);
+    for (int n = 0; n < steps20ms; ++n)
+    {
+        drum.step();
+        const auto& gap = drum.snareContact().gaps();
+        for (int p = 0; p < points; ++p)
+        {
+            const bool touching = gap[(size_t) p] > 0.0;
+            int& s = state[(size_t) p];
+            if (s == 0 && touching)
+                s = 1;
+            else if (s == 1 && ! touching)
+                s = 2;
+            else if (s == 2 && touching)
+            {
+                s = 3;
+                ++restrikes;
+            }
+        }
+    }
+    const double hc = drum.carry().grid().spacing();
+    const double penetration = drum.solverStats().maxSnarePenetration_m;
+    INFO(restrikes << " of " << points << " points struck again; largest penetration " << penetration * 1e3 << " mm, h_c "
+                   << hc * 1e3 << " mm");
+    CHECK(restrikes > points / 4);
+    CHECK(penetration > 0.0);
+    CHECK(penetration < 0.01 * hc);
+    CHECK(drum.solverStats().fallbacks == 0);
+}
+
+namespace
+{
+// Share of the output's energy above 2 kHz, 100-400 ms after a fortissimo strike.
+double highBandShare(bool snaresOn)
+{
+    DrumConfig cfg = test::wholeDrum();
+    cfg.snares.engaged = snaresOn;
+    Drum drum(cfg);
+    drum.strike(5.0, 0.3, 0.0);
+    const int from = (int) (0.1 * cfg.sampleRate_Hz), to = (int) (0.4 * cfg.sampleRate_Hz);
+    std::vector<double> x;
+    for (int n = 0; n < to; ++n)
+    {
+        const double y = drum.step();
+        if (n >= from)
+            x.push_back(y);
+    }
+    const auto X = test::hannSpectrum(x, 1);
+    const double binHz = cfg.sampleRate_Hz / (2.0 * (double) X.size());
+    double high = 0.0, all = 0.0;
+    for (size_t i = 1; i < X.size(); ++i)
+    {
+        all += std::norm(X[i]);
+        if ((double) i * binHz > 2000.0)
+            high += std::norm(X[i]);
+    }
+    return high / all;
+}
+} // namespace
+
+TEST_CASE("the snares audibly matter: much more energy above 2 kHz when engaged", "[drum][snares]")
+{
+    const double on = highBandShare(true), off = highBandShare(false);
+    INFO("share above 2 kHz: snares on " << on << ", off " << off);
+    CHECK(on > 3.0 * off);
+}
+
+namespace
+{
+struct ModePair
+{
+    double inPhase = 0.0, antiPhase = 0.0;
+};
+
+ModePair modalEstimate(const DrumConfig& cfg, double depth);
+
+// In-phase and anti-phase peaks of the two heads' swept volumes (snares off, lossless).
+ModePair measuredPairs(AirModel model, double depth, ModePair expected)
+{
+    DrumConfig cfg = test::wholeDrum();
+    cfg.snares.engaged = false;
+    cfg.cavity.model = model;
+    cfg.cavity.shellDepth_m = depth;
+    cfg.cavity.gridShellDepth_m = 0.05; // one grid for every depth compared
+    Drum drum(cfg.lossless());
+    drum.strike(2.0, 0.0, 0.0);
+    std::vector<double> vb, vc;
+    for (int n = 0; n < (1 << 15); ++n)
+    {
+        drum.step();
+        double b = 0.0, c = 0.0;
+        for (double w : drum.batter().displacement())
+            b += w;
+        for (double w : drum.carry().displacement())
+            c += w;
+        vb.push_back(b);
+        vc.push_back(c);
+    }
+    const auto B = test::hannSpectrum(vb), C = test::hannSpectrum(vc);
+    const double binHz = cfg.sampleRate_Hz / (2.0 * (double) B.size());
+    // In-phase modes show in the sum of the swept volumes, anti-phase ones in the difference
+    // (the cavity's dV). The peak taken is the strongest within 5 % of `near`, within 60 dB of
+    // the spectrum's strongest, whose batter/carry cross-spectrum has the matching phase;
+    // with no `near`, the strongest such peak within 30 dB.
+    auto find = [&](double sign, double near) {
+        std::vector<std::complex<double>> X(B.size());
+        for (size_t i = 0; i < B.size(); ++i)
+            X[i] = B[i] + sign * C[i];
+        auto found = test::peaks(X, binHz, 100.0, 1000.0);
+        if (found.empty())
+            return 0.0;
+        const double floor = found.front().logMagnitude - std::log(near > 0.0 ? 1000.0 : 30.0);
+        for (const auto& p : found) // strongest first
+        {
+            const double phase = std::abs(std::arg(B[p.bin] * std::conj(C[p.bin])));
+            const bool matches = sign > 0 ? phase < 0.5 * std::numbers::pi : phase > 0.5 * std::numbers::pi;
+            const bool bothMove = std::abs(C[p.bin]) > 1e-3 * std::abs(B[p.bin]);
+            const bool inWindow = near > 0.0 ? std::abs(p.frequency - near) < 0.05 * near : true;
+            if (p.logMagnitude >= floor && matches && (sign > 0 || bothMove) && inWindow)
+                return p.frequency;
+        }
+        return 0.0;
+    };
+    ModePair pair { find(+1.0, expected.inPhase), find(-1.0, expected.antiPhase) };
+    return pair;
+}
+
+// The same pair from the continuous model: the axisymmetric modes J0(j0n r/R) of both heads
+// (modal mass rho pi R^2 J1(j0n)^2, frequency j0n c / (2 pi R)) coupled by the air spring
+// K a_i a_j, with a_n = 2 pi R^2 J1(j0n) / j0n the swept area of mode n and
+// K = rho_a c_a^2 / V0 (only axisymmetric modes sweep a volume). A mode is in phase when both
+// heads' swept volumes move together.
+ModePair modalEstimate(const DrumConfig& cfg, double depth)
+{
+    constexpr int N = 10;
+    const double j0[N] = { 2.404825557695773, 5.520078110286311, 8.653727912911013, 11.79153443901428, 14.93091770848779,
+                           18.07106396791092, 21.21163662987926, 24.35247153074930, 27.49347913204025, 30.63460646843198 };
+    const double R = cfg.batter.radius_m;
+    const double K = cfg.cavity.airDensity_kg_per_m3 * std::pow(cfg.cavity.soundSpeed_m_per_s, 2) / (std::numbers::pi * R * R * depth);
+    Eigen::MatrixXd stiffness = Eigen::MatrixXd::Zero(2 * N, 2 * N), mass = Eigen::MatrixXd::Zero(2 * N, 2 * N);
+    Eigen::VectorXd area(2 * N);
+    const MembraneSpec* heads[2] = { &cfg.batter, &cfg.carry };
+    for (int h = 0; h < 2; ++h)
+        for (int n = 0; n < N; ++n)
+        {
+            const int i = h * N + n;
+            const double J1 = std::cyl_bessel_j(1.0, j0[n]);
+            const double rho = heads[h]->density_kg_per_m2, c = std::sqrt(heads[h]->tension_N_per_m / rho);
+            mass(i, i) = rho * std::numbers::pi * R * R * J1 * J1;
+            stiffness(i, i) = std::pow(j0[n] * c / R, 2) * mass(i, i);
+            area(i) = 2.0 * std::numbers::pi * R * R * J1 / j0[n];
+        }
+    Eigen::VectorXd signedArea = area;
+    signedArea.tail(N) *= -1.0; // dV = V_b - V_c
+    stiffness += K * signedArea * signedArea.transpose();
+    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> modes(stiffness, mass);
+    ModePair pair;
+    for (int e = 0; e < 2 * N; ++e)
+    {
+        const Eigen::VectorXd v = modes.eigenvectors().col(e);
+        const double vb = area.head(N).dot(v.head(N)), vc = area.tail(N).dot(v.tail(N));
+        const double f = std::sqrt(modes.eigenvalues()(e)) / (2.0 * std::numbers::pi);
+        if (pair.inPhase == 0.0 && vb * vc > 0.0)
+            pair.inPhase = f;
+        if (pair.antiPhase == 0.0 && vb * vc < 0.0)
+            pair.antiPhase = f;
+    }
+    return pair;
+}
+} // namespace
+
+TEST_CASE("the cavity couples the heads: the lowest mode splits into an in-phase and an anti-phase pair", "[drum][cavity]")
+{
+    const DrumConfig cfg = test::wholeDrum();
+    const double f01b = 2.404825557695773 * std::sqrt(cfg.batter.tension_N_per_m / cfg.batter.density_kg_per_m2)
+                      / (2.0 * std::numbers::pi * cfg.batter.radius_m);
+
+    const ModePair none = measuredPairs(AirModel::none, 0.14, { f01b, 0.0 });
+    INFO("no air: in-phase " << none.inPhase << " Hz, anti-phase " << none.antiPhase << " Hz");
+    CHECK(none.inPhase == Approx(f01b).epsilon(0.01)); // the batter alone; the carry head stays still
+    CHECK(none.antiPhase == 0.0);
+
+    const ModePair deepEstimate = modalEstimate(cfg, 0.14), shallowEstimate = modalEstimate(cfg, 0.07);
+    const ModePair deep = measuredPairs(AirModel::cavity, 0.14, deepEstimate);
+    const ModePair shallow = measuredPairs(AirModel::cavity, 0.07, shallowEstimate);
+    INFO("14 cm shell: " << deep.inPhase << " / " << deep.antiPhase << " Hz (modal estimate " << deepEstimate.inPhase
+                         << " / " << deepEstimate.antiPhase << ")");
+    INFO("7 cm shell: " << shallow.inPhase << " / " << shallow.antiPhase << " Hz (estimate " << shallowEstimate.inPhase
+                        << " / " << shallowEstimate.antiPhase << ")");
+    CHECK(deep.inPhase == Approx(deepEstimate.inPhase).epsilon(0.02));
+    CHECK(deep.antiPhase == Approx(deepEstimate.antiPhase).epsilon(0.02));
+    CHECK(shallow.inPhase == Approx(shallowEstimate.inPhase).epsilon(0.02));
+    CHECK(shallow.antiPhase == Approx(shallowEstimate.antiPhase).epsilon(0.02));
+    CHECK(shallow.antiPhase > 1.1 * deep.antiPhase); // a shallower shell stiffens the air spring
+}
+
+TEST_CASE("the Newton solves converge within their caps through a fortissimo strike", "[drum][solver]")
+{
+    DrumConfig cfg = test::wholeDrum();
+    cfg.strikeSpeedMax_m_per_s = 10.0;
+    Drum drum(cfg);
+    drum.strike(10.0, 0.3, 0.0);
+    for (int n = 0; n < 22050; ++n)
+        REQUIRE(std::isfinite(drum.step()));
+    const auto& s = drum.solverStats();
+    INFO("max iterations " << s.maxIterations << " (snares " << s.maxSnareIterations << ")");
+    CHECK(s.fallbacks == 0);
+    CHECK(s.maxIterations < MalletContact::maxNewtonIterations);
+    CHECK(s.maxSnareIterations > 0);
+}
