@@ -1,0 +1,294 @@
+// The SnareSim processor, linked from the plug-in's shared code (snaresim_juce).
+
+#include <catch2/catch.hpp>
+
+#include "PluginProcessor.h"
+
+#include <juce_audio_processors/juce_audio_processors.h>
+
+#include <cmath>
+#include <memory>
+#include <vector>
+
+// Defined in PluginProcessor.cpp; the plug-in wrappers call it to create the processor.
+juce::AudioProcessor* JUCE_CALLTYPE createPluginFilter();
+
+namespace
+{
+struct RenderStats
+{
+    bool allFinite = true;
+    float peak = 0.0f;
+    float peakBeforeOnset = 0.0f;   // largest |sample| before the note-on
+    bool channelsIdentical = true;
+};
+
+// Renders `totalSamples` samples in blocks of `blockSize`, with a note-on (velocity) at
+// absolute sample `noteAt`.
+RenderStats render (juce::AudioProcessor& proc, int blockSize, int totalSamples, int noteAt, int velocity = 100)
+{
+    RenderStats stats;
+    const int numChannels = juce::jmax (proc.getTotalNumInputChannels(), proc.getTotalNumOutputChannels());
+    juce::AudioBuffer<float> buffer (numChannels, blockSize);
+    juce::MidiBuffer midi;
+
+    for (int start = 0; start < totalSamples; start += blockSize)
+    {
+        const int n = juce::jmin (blockSize, totalSamples - start);
+        buffer.setSize (numChannels, n, false, false, true);
+        buffer.clear();
+        // Fill with garbage to prove the processor writes every sample.
+        for (int ch = 0; ch < numChannels; ++ch)
+            juce::FloatVectorOperations::fill (buffer.getWritePointer (ch), 123.0f, n);
+
+        midi.clear();
+        if (noteAt >= start && noteAt < start + n)
+            midi.addEvent (juce::MidiMessage::noteOn (10, 38, (juce::uint8) velocity), noteAt - start);
+
+        proc.processBlock (buffer, midi);
+
+        for (int i = 0; i < n; ++i)
+        {
+            const float s = buffer.getSample (0, i);
+            if (! std::isfinite (s))
+                stats.allFinite = false;
+            stats.peak = juce::jmax (stats.peak, std::abs (s));
+            if (start + i < noteAt)
+                stats.peakBeforeOnset = juce::jmax (stats.peakBeforeOnset, std::abs (s));
+            for (int ch = 1; ch < numChannels; ++ch)
+                if (buffer.getSample (ch, i) != s)
+                    stats.channelsIdentical = false;
+        }
+    }
+
+    return stats;
+}
+
+void prepare (juce::AudioProcessor& proc, double sampleRate, int blockSize)
+{
+    proc.setRateAndBufferSizeDetails (sampleRate, blockSize);
+    proc.prepareToPlay (sampleRate, blockSize);
+}
+} // namespace
+
+TEST_CASE ("parameters mirror the engine's parameter table", "[processor]")
+{
+    SnareSimAudioProcessor proc;
+    const auto& params = proc.getParameters();
+    REQUIRE ((size_t) params.size() == snaresim::kNumParameters);
+
+    for (const auto& spec : snaresim::parameterSpecs())
+    {
+        const juce::String key (std::string (spec.key));
+        INFO ("parameter " << key);
+        auto* p = proc.getValueTreeState().getParameter (key);
+        REQUIRE (p != nullptr);
+        CHECK (p->getName (100) == juce::String (std::string (spec.name)));
+        CHECK (p->getLabel() == juce::String (std::string (spec.unit)));
+
+        const auto& range = p->getNormalisableRange();
+        CHECK (range.start == Approx ((float) spec.minValue));
+        CHECK (range.end == Approx ((float) spec.maxValue));
+        CHECK (p->convertFrom0to1 (p->getDefaultValue()) == Approx ((float) spec.defaultValue).margin (1e-9));
+        CHECK (*proc.getValueTreeState().getRawParameterValue (key) == Approx ((float) spec.defaultValue).margin (1e-9));
+
+        switch (spec.kind)
+        {
+            case snaresim::ParamKind::toggle:   CHECK (dynamic_cast<juce::AudioParameterBool*> (p) != nullptr); break;
+            case snaresim::ParamKind::integer:  CHECK (dynamic_cast<juce::AudioParameterInt*> (p) != nullptr); break;
+            case snaresim::ParamKind::choice:   CHECK (dynamic_cast<juce::AudioParameterChoice*> (p) != nullptr); break;
+            case snaresim::ParamKind::continuous:
+            default:                            CHECK (dynamic_cast<juce::AudioParameterFloat*> (p) != nullptr); break;
+        }
+
+        if (spec.kind == snaresim::ParamKind::continuous && spec.scale == snaresim::ParamScale::logarithmic)
+        {
+            // Half way on the control is the geometric mean of the range.
+            const auto mid = p->convertFrom0to1 (0.5f);
+            CHECK (mid == Approx (std::sqrt (spec.minValue * spec.maxValue)).epsilon (1e-4));
+        }
+    }
+}
+
+TEST_CASE ("a note-on at 48 kHz gives finite, non-silent audio", "[processor]")
+{
+    SnareSimAudioProcessor proc;
+    prepare (proc, 48000.0, 512);
+    REQUIRE (proc.getDrum() != nullptr);
+    CHECK_FALSE (proc.usedFallbackParameters());
+    CHECK (proc.getTotalNumInputChannels() == 0);
+    CHECK (proc.getTotalNumOutputChannels() == 2);
+
+    const auto stats = render (proc, 512, 48000 / 2, 100);
+    CHECK (stats.allFinite);
+    CHECK (stats.peakBeforeOnset == 0.0f);
+    CHECK (stats.peak > 1.0e-4f);
+    CHECK (stats.peak < 100.0f);
+    CHECK (stats.channelsIdentical);
+}
+
+TEST_CASE ("blocks larger than announced are rendered in chunks", "[processor]")
+{
+    SnareSimAudioProcessor proc;
+    prepare (proc, 48000.0, 64);
+
+    const auto stats = render (proc, 4000, 12000, 2500);
+    CHECK (stats.allFinite);
+    CHECK (stats.peakBeforeOnset == 0.0f);
+    CHECK (stats.peak > 1.0e-4f);
+    CHECK (stats.channelsIdentical);
+}
+
+TEST_CASE ("mono output and 44.1 kHz are supported", "[processor]")
+{
+    SnareSimAudioProcessor proc;
+
+    juce::AudioProcessor::BusesLayout mono;
+    mono.outputBuses.add (juce::AudioChannelSet::mono());
+    REQUIRE (proc.setBusesLayout (mono));
+
+    juce::AudioProcessor::BusesLayout withInput = mono;
+    withInput.inputBuses.add (juce::AudioChannelSet::stereo());
+    CHECK_FALSE (proc.checkBusesLayoutSupported (withInput));
+
+    prepare (proc, 44100.0, 256);
+    CHECK (proc.getTotalNumOutputChannels() == 1);
+    const auto stats = render (proc, 256, 22050, 0, 127);
+    CHECK (stats.allFinite);
+    CHECK (stats.peak > 1.0e-4f);
+}
+
+TEST_CASE ("louder MIDI velocity strikes harder", "[processor]")
+{
+    auto peakFor = [] (int velocity)
+    {
+        SnareSimAudioProcessor proc;
+        prepare (proc, 48000.0, 480);
+        return render (proc, 480, 9600, 0, velocity).peak;
+    };
+
+    CHECK (peakFor (127) > peakFor (20));
+}
+
+TEST_CASE ("processing before prepareToPlay outputs silence", "[processor]")
+{
+    SnareSimAudioProcessor proc;
+    proc.setRateAndBufferSizeDetails (48000.0, 128);
+    const auto stats = render (proc, 128, 512, 10);
+    CHECK (stats.allFinite);
+    CHECK (stats.peak == 0.0f);
+}
+
+TEST_CASE ("state save and restore round-trips every parameter exactly", "[processor][state]")
+{
+    SnareSimAudioProcessor proc;
+    auto& params = proc.getParameters();
+
+    // A non-default value for every parameter, set as a host would (normalised), on a legal
+    // value of the parameter (whole numbers for toggles, choices and integers).
+    auto& tree = proc.getValueTreeState();
+    std::vector<float> saved, savedRaw;
+    for (int i = 0; i < params.size(); ++i)
+    {
+        auto* p = dynamic_cast<juce::RangedAudioParameter*> (params[i]);
+        REQUIRE (p != nullptr);
+        auto target = p->convertFrom0to1 (std::fmod (0.137f + 0.161f * (float) i, 1.0f));
+        if (target == p->convertFrom0to1 (p->getDefaultValue()))
+            target = p->convertFrom0to1 (p->getDefaultValue() < 0.5f ? 1.0f : 0.0f);
+        p->setValueNotifyingHost (p->convertTo0to1 (target));
+        saved.push_back (p->getValue());
+        savedRaw.push_back (tree.getRawParameterValue (p->paramID)->load());
+    }
+
+    juce::MemoryBlock state;
+    proc.getStateInformation (state);
+    REQUIRE (state.getSize() > 0);
+
+    // The saved XML carries a version attribute.
+    const auto xml = juce::AudioProcessor::getXmlFromBinary (state.getData(), (int) state.getSize());
+    REQUIRE (xml != nullptr);
+    CHECK (xml->getIntAttribute (SnareSimAudioProcessor::stateVersionAttribute, -1)
+           == SnareSimAudioProcessor::stateVersion);
+
+    // Move everything away, then restore into the same and into a fresh processor.
+    for (auto* p : params)
+        p->setValueNotifyingHost (p->getDefaultValue());
+
+    SnareSimAudioProcessor fresh;
+    for (auto* target : { &proc, &fresh })
+    {
+        target->setStateInformation (state.getData(), (int) state.getSize());
+        const auto& restored = target->getParameters();
+        REQUIRE (restored.size() == params.size());
+
+        for (int i = 0; i < restored.size(); ++i)
+        {
+            auto* p = dynamic_cast<juce::RangedAudioParameter*> (restored[i]);
+            REQUIRE (p != nullptr);
+            INFO ("parameter " << p->paramID);
+            CHECK (p->getValue() == saved[(size_t) i]);
+            CHECK (target->getValueTreeState().getRawParameterValue (p->paramID)->load() == savedRaw[(size_t) i]);
+            CHECK (savedRaw[(size_t) i] != p->convertFrom0to1 (p->getDefaultValue()));
+        }
+    }
+
+    // The engine sees the restored values.
+    const auto engineParams = fresh.currentParameters();
+    for (const auto& spec : snaresim::parameterSpecs())
+    {
+        const juce::String key (std::string (spec.key));
+        INFO ("parameter " << key);
+        const auto* raw = fresh.getValueTreeState().getRawParameterValue (key);
+        REQUIRE (raw != nullptr);
+        CHECK ((float) engineParams.get (spec.id) == raw->load());
+    }
+
+    // The restored parameters take effect at the next prepareToPlay.
+    prepare (fresh, 48000.0, 256);
+    CHECK (fresh.getDrum() != nullptr);
+    const auto stats = render (fresh, 256, 4800, 0);
+    CHECK (stats.allFinite);
+}
+
+TEST_CASE ("garbage or foreign state is ignored", "[processor][state]")
+{
+    SnareSimAudioProcessor proc;
+    auto* p = proc.getParameters()[0];
+    p->setValueNotifyingHost (0.25f);
+    const float before = p->getValue();
+
+    const char garbage[] = "definitely not a state";
+    proc.setStateInformation (garbage, (int) sizeof (garbage));
+    CHECK (p->getValue() == before);
+
+    juce::MemoryBlock foreign;
+    juce::AudioProcessor::copyXmlToBinary (juce::XmlElement ("SomethingElse"), foreign);
+    proc.setStateInformation (foreign.getData(), (int) foreign.getSize());
+    CHECK (p->getValue() == before);
+
+    proc.setStateInformation (nullptr, 0);
+    CHECK (p->getValue() == before);
+}
+
+TEST_CASE ("the plug-in factory creates the processor with a generic editor", "[processor]")
+{
+    std::unique_ptr<juce::AudioProcessor> proc (createPluginFilter());
+    REQUIRE (proc != nullptr);
+    CHECK (proc->getName() == "SnareSim");
+    CHECK (proc->acceptsMidi());
+    CHECK_FALSE (proc->producesMidi());
+    CHECK (proc->hasEditor());
+}
+
+TEST_CASE ("a sample rate the model cannot take never crashes", "[processor]")
+{
+    for (const double rate : { 0.0, 1000.0, 8000.0 })
+    {
+        INFO ("sample rate " << rate);
+        SnareSimAudioProcessor proc;
+        REQUIRE_NOTHROW (prepare (proc, rate, 256));
+        const auto stats = render (proc, 256, 2048, 10);
+        CHECK (stats.allFinite);
+        CHECK (stats.peakBeforeOnset == 0.0f);
+    }
+}
