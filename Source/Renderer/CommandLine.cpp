@@ -1,0 +1,394 @@
+#include "CommandLine.h"
+
+#include "Errors.h"
+#include "Microphones.h"
+#include "Presets.h"
+
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <optional>
+#include <string_view>
+#include <system_error>
+#include <vector>
+
+namespace snaresim::render
+{
+namespace
+{
+
+[[noreturn]] void fail(const std::string& message)
+{
+    throw UserError(message);
+}
+
+// A finite decimal number, the whole text (std::from_chars: no locale, no leading spaces).
+double parseNumber(std::string_view text, std::string_view what)
+{
+    std::string_view digits = text;
+    if (digits.size() > 1 && digits.front() == '+')
+        digits.remove_prefix(1);
+
+    double value = 0.0;
+    const auto* last = digits.data() + digits.size();
+    const auto [ptr, ec] = std::from_chars(digits.data(), last, value);
+
+    if (digits.empty() || ec == std::errc::invalid_argument || ptr != last)
+        fail(std::string(what) + ": " + inQuotes(text) + " is not a number");
+    if (ec == std::errc::result_out_of_range || ! std::isfinite(value))
+        fail(std::string(what) + ": " + inQuotes(text) + " is not a finite number");
+    return value;
+}
+
+int parseInteger(std::string_view text, std::string_view what)
+{
+    int value = 0;
+    const auto* last = text.data() + text.size();
+    const auto [ptr, ec] = std::from_chars(text.data(), last, value);
+    if (text.empty() || ec != std::errc {} || ptr != last)
+        fail(std::string(what) + ": " + inQuotes(text) + " is not an integer");
+    return value;
+}
+
+Strike parseHit(std::string_view text)
+{
+    const auto colon = text.find(':');
+    if (colon == std::string_view::npos)
+        fail("--hit: " + inQuotes(text) + " is not TIME:VELOCITY (e.g. 0.5:100)");
+
+    Strike hit;
+    hit.time_s = parseNumber(text.substr(0, colon), "--hit time");
+    hit.velocity = parseInteger(text.substr(colon + 1), "--hit velocity");
+
+    if (hit.time_s < 0.0 || hit.time_s > kMaxSeconds)
+        fail("--hit: time " + inQuotes(text.substr(0, colon)) + " is outside 0.."
+             + std::to_string((int) kMaxSeconds) + " s");
+    if (hit.velocity < 1 || hit.velocity > 127)
+        fail("--hit: velocity " + inQuotes(text.substr(colon + 1)) + " is outside 1..127");
+    return hit;
+}
+
+// The names of a choice parameter ("none|cavity" -> { "none", "cavity" }).
+std::vector<std::string_view> choiceNames(const ParameterSpec& spec)
+{
+    std::vector<std::string_view> names;
+    std::string_view rest = spec.choices;
+    while (! rest.empty())
+    {
+        const auto bar = rest.find('|');
+        names.push_back(rest.substr(0, bar));
+        rest = bar == std::string_view::npos ? std::string_view {} : rest.substr(bar + 1);
+    }
+    return names;
+}
+
+std::optional<int> choiceIndex(const ParameterSpec& spec, std::string_view name)
+{
+    const auto names = choiceNames(spec);
+    for (std::size_t i = 0; i < names.size(); ++i)
+        if (names[i] == name)
+            return (int) i;
+    return std::nullopt;
+}
+
+// "0 none, 1 cavity"
+std::string choiceList(const ParameterSpec& spec)
+{
+    std::string list;
+    const auto names = choiceNames(spec);
+    for (std::size_t i = 0; i < names.size(); ++i)
+    {
+        list += (i == 0 ? "" : ", ") + std::to_string(i) + " ";
+        list.append(names[i]);
+    }
+    return list;
+}
+
+// What a non-continuous parameter takes, for messages.
+std::string wholeValues(const ParameterSpec& spec)
+{
+    switch (spec.kind)
+    {
+        case ParamKind::toggle: return "0 or 1";
+        case ParamKind::choice: return "one of " + choiceList(spec) + " (the number or the name)";
+        case ParamKind::integer:
+        case ParamKind::continuous: break;
+    }
+    return "a whole number from " + numberText(spec.minValue) + " to " + numberText(spec.maxValue);
+}
+
+int parseModel(std::string_view text)
+{
+    const auto& air = spec(ParamId::airModel);
+    if (const auto index = choiceIndex(air, text))
+        return *index;
+    std::string names;
+    for (const auto name : choiceNames(air))
+        (names += names.empty() ? "" : "|").append(name);
+    fail("--model: " + inQuotes(text) + " is not one of " + names);
+}
+
+MicOutput parseMic(std::string_view text)
+{
+    if (const auto mic = findMic(text))
+        return *mic;
+    fail("--mic: " + inQuotes(text) + " is not one of " + std::string(micChoices()));
+}
+
+ParameterOverride parseOverride(std::string_view text)
+{
+    const auto equals = text.find('=');
+    if (equals == std::string_view::npos || equals == 0)
+        fail("--set: " + inQuotes(text) + " is not ID=VALUE (see --list-params)");
+
+    const auto key = text.substr(0, equals);
+    const auto id = findParameter(key);
+    if (! id)
+        fail("--set: unknown parameter " + inQuotes(key) + " (see --list-params)");
+
+    const auto& parameter = spec(*id);
+    const auto valueText = text.substr(equals + 1);
+
+    ParameterOverride result;
+    result.id = *id;
+    result.text = std::string(text);
+    if (parameter.kind == ParamKind::choice)
+        if (const auto index = choiceIndex(parameter, valueText))
+        {
+            result.value = *index;
+            return result;
+        }
+    if (parameter.kind == ParamKind::choice && ! valueText.empty() && ! std::isdigit((unsigned char) valueText.front())
+        && valueText.front() != '+' && valueText.front() != '-' && valueText.front() != '.')
+        fail("--set " + std::string(key) + ": " + inQuotes(valueText) + " is not one of " + choiceList(parameter));
+    result.value = parseNumber(valueText, "--set " + std::string(key));
+
+    // Integer, toggle and choice parameters take whole numbers only (the engine's
+    // ParameterSet::set refuses the rest too; this says why).
+    if (parameter.kind != ParamKind::continuous && result.value != std::round(result.value))
+        fail("--set " + std::string(text) + ": " + std::string(key) + " takes " + wholeValues(parameter)
+             + ", not a fraction");
+    return result;
+}
+
+double parseSampleRate(std::string_view text)
+{
+    const double rate = parseNumber(text, "--sample-rate");
+    if (rate < kMinSampleRate_Hz || rate > kMaxSampleRate_Hz)
+        fail("--sample-rate: " + inQuotes(text) + " is outside 8000..384000 Hz");
+    if (rate != std::floor(rate))
+        fail("--sample-rate: " + inQuotes(text) + " is not a whole number of Hz (WAV stores integers)");
+    return rate;
+}
+
+double parseSeconds(std::string_view text)
+{
+    const double seconds = parseNumber(text, "--seconds");
+    if (seconds <= 0.0 || seconds > kMaxSeconds)
+        fail("--seconds: " + inQuotes(text) + " must be greater than 0 and at most "
+             + std::to_string((int) kMaxSeconds));
+    return seconds;
+}
+
+std::filesystem::path parsePath(std::string_view text, std::string_view option)
+{
+    if (text.empty())
+        fail(std::string(option) + ": empty file name");
+    return std::filesystem::path(std::string(text));
+}
+
+template <typename T>
+void setOnce(std::optional<T>& slot, T value, std::string_view option)
+{
+    if (slot)
+        fail(std::string(option) + " given more than once");
+    slot = std::move(value);
+}
+
+} // namespace
+
+CommandLine parseCommandLine(const std::vector<std::string>& args)
+{
+    CommandLine result;
+    RenderJob& job = result.job;
+
+    for (const auto& arg : args)
+        if (arg == "--help" || arg == "-h")
+        {
+            result.action = CommandLine::Action::help;
+            return result;
+        }
+
+    std::optional<std::filesystem::path> output;
+    std::optional<double> sampleRate;
+    bool listParameters = false;
+
+    for (std::size_t i = 0; i < args.size(); ++i)
+    {
+        std::string option = args[i];
+        std::optional<std::string> inlineValue;
+
+        if (option.rfind("--", 0) == 0)
+        {
+            if (const auto equals = option.find('='); equals != std::string::npos)
+            {
+                inlineValue = option.substr(equals + 1);
+                option.resize(equals);
+            }
+        }
+        else if (option.empty() || option.front() != '-' || option == "-")
+        {
+            fail("unexpected argument " + inQuotes(option) + " (see --help)");
+        }
+
+        // The option's value: "--opt=VALUE" or the next argument. A next argument that
+        // looks like an option ("--...") means the value is missing.
+        auto value = [&]() -> std::string {
+            if (inlineValue)
+                return *inlineValue;
+            if (i + 1 >= args.size() || args[i + 1].rfind("--", 0) == 0)
+                fail("option " + option + " needs a value (see --help)");
+            return args[++i];
+        };
+        auto flag = [&]() {
+            if (inlineValue)
+                fail("option " + option + " takes no value");
+            return true;
+        };
+
+        if (option == "-o" || option == "--output")
+            setOnce(output, parsePath(value(), option), option);
+        else if (option == "--hit")
+            job.hits.push_back(parseHit(value()));
+        else if (option == "--midi")
+            setOnce(job.midiFile, parsePath(value(), option), option);
+        else if (option == "--seconds")
+            setOnce(job.seconds, parseSeconds(value()), option);
+        else if (option == "--sample-rate")
+            setOnce(sampleRate, parseSampleRate(value()), option);
+        else if (option == "--preset")
+        {
+            auto name = value();
+            if (name.empty())
+                fail("--preset: empty preset name");
+            setOnce(job.preset, std::move(name), option);
+        }
+        else if (option == "--set")
+            job.overrides.push_back(parseOverride(value()));
+        else if (option == "--model")
+            setOnce(job.airModel, parseModel(value()), option);
+        else if (option == "--mic")
+            setOnce(job.mic, parseMic(value()), option);
+        else if (option == "--energy-csv")
+            setOnce(job.energyCsv, parsePath(value(), option), option);
+        else if (option == "--energy-plot")
+            setOnce(job.energyPlot, parsePath(value(), option), option);
+        else if (option == "--spectrogram")
+            setOnce(job.spectrogram, parsePath(value(), option), option);
+        else if (option == "--lossless")
+            job.lossless = flag();
+        else if (option == "--json")
+            job.json = flag();
+        else if (option == "--list-params")
+            listParameters = flag();
+        else
+            fail("unknown option " + inQuotes(option) + " (see --help)");
+    }
+
+    if (sampleRate)
+        job.sampleRate_Hz = *sampleRate;
+
+    if (listParameters)
+    {
+        result.action = CommandLine::Action::listParameters;
+        return result;
+    }
+
+    if (! output)
+        fail("missing -o OUTPUT.wav (see --help)");
+    job.output = *output;
+
+    if (job.hits.empty() && ! job.midiFile)
+        fail("nothing to play: give --hit TIME:VELOCITY or --midi FILE (see --help)");
+
+    return result;
+}
+
+std::string helpText()
+{
+    auto presetLine = [] {
+        std::string line = "Presets (--preset, case-insensitive):";
+        const char* separator = " ";
+        for (const auto& preset : factoryPresets())
+        {
+            line += separator;
+            line += '"';
+            line.append(preset.name);
+            line += '"';
+            separator = ", ";
+        }
+        return line + "\n";
+    };
+
+    return R"(snaresim-render: render strikes of the SnareSim physical snare drum model to a WAV file.
+
+Usage:
+  snaresim-render -o OUT.wav (--hit TIME:VELOCITY ... | --midi FILE.mid) [options]
+  snaresim-render --list-params
+  snaresim-render --help
+
+Strikes:
+  --hit TIME:VELOCITY   strike at TIME seconds (>= 0) with MIDI velocity 1..127, at the
+                        default strike point; repeatable (e.g. --hit 0:100 --hit 0.5:60)
+  --midi FILE           strike on every note-on of a Standard MIDI file (all tracks, tempo
+                        map honoured, any note number; velocity-0 note-ons are note-offs)
+
+Output:
+  -o, --output FILE     the WAV file to write: 32-bit float (required)
+  --mic top|bottom|far|mix|all
+                        the signal in the WAV (default mix): top = batter velocity at
+                        the top microphone, bottom = carry-head velocity at the bottom
+                        (snare-side) microphone, far = far-field pressure, mix = their
+                        weighted mix (the plug-in's output); all = four channels in the
+                        order top, bottom, far, mix
+  --seconds S           length in seconds, 0 < S <= 3600 (default: 2; with --midi, the
+                        latest strike + 2). Strikes at or after the end are not played.
+  --sample-rate HZ      whole number of Hz, 8000..384000 (default 48000)
+  --energy-csv FILE     also write the energy ledger, one row per sample:
+                        time_s,batter_J,carry_J,mallets_J,snares_J,cavity_J,total_J,
+                        dissipated_J,injected_J,balance_J
+                        (total = the five components; balance = total + dissipated
+                        - injected, constant up to round-off)
+  --energy-plot FILE    also write a PNG (1400 x 600): left, the normalised variation of
+                        the energy balance (h^n - h^0) / h^0, h^0 = the total energy right
+                        after the first strike; right, the energy of each component and
+                        the total, against time in ms
+  --spectrogram FILE    also write a PNG (1200 x 700): log-frequency spectrogram of the
+                        WAV's signal (with --mic all: the mix), Hann window of 2048
+                        samples at 48 kHz (scaled with the rate), 75 % overlap, 90 dB range
+  --json                print one JSON object with the render statistics on stdout
+                        (default: a short human-readable summary on stdout)
+
+Model:
+  --preset NAME         start from a factory preset instead of the defaults
+  --model cavity|none   the air between the heads: cavity (the enclosed air couples the
+                        heads; the default) or none (heads uncoupled); sets air_model
+                        after the preset, before any --set
+  --set ID=VALUE        set one parameter (after the preset and --model); repeatable.
+                        Integer, on/off and choice parameters take whole numbers only;
+                        a choice also takes its name (e.g. air_model=none). The snares:
+                        snares_engaged (0 off, 1 on), snare_tension, snare_count,
+                        carry_tension, shell_depth
+  --lossless            switch every loss off (energy is then conserved); reports the
+                        energy balance drift (energy_relative_drift_max)
+  --list-params         list every parameter (ID, range, unit, default) and exit
+)" + presetLine() + R"(
+Exit status: 0 success, 2 bad input or unwritable output (one line on stderr starting
+with "snaresim-render: error: ", no output file left behind), 1 internal failure,
+130 / 143 interrupted by SIGINT / SIGTERM (no output file left behind).
+Outputs (WAV, CSV, PNGs; no two may be the same file) are written to a temporary file
+next to the target and renamed when complete.
+)";
+}
+
+} // namespace snaresim::render

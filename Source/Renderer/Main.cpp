@@ -1,0 +1,266 @@
+// snaresim-render: renders strikes of the SnareSim drum model to a WAV file.
+// This file only wires the pieces together; see CommandLine.h for the options.
+//
+// Exit codes: 0 success; 2 bad input or unusable file (one line on stderr starting with
+// "snaresim-render: error: ", no output left behind); 1 unexpected internal failure;
+// 128 + N when interrupted by signal N (SIGINT, SIGTERM, SIGHUP; no output left behind).
+
+#include "AtomicFile.h"
+#include "CommandLine.h"
+#include "EnergyCsvWriter.h"
+#include "EnergyPlot.h"
+#include "EngineSetup.h"
+#include "Errors.h"
+#include "Interrupt.h"
+#include "Microphones.h"
+#include "MidiStrikes.h"
+#include "Plotting.h"
+#include "RenderPlan.h"
+#include "Renderer.h"
+#include "Report.h"
+#include "Spectrogram.h"
+#include "WavWriter.h"
+
+#include "Parameters.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace snaresim::render
+{
+namespace
+{
+
+namespace fs = std::filesystem;
+
+// Absolute, without "." / ".." and with the symbolic links of its existing part resolved.
+fs::path resolved(const fs::path& path)
+{
+    std::error_code ec;
+    const auto absolute = fs::absolute(path).lexically_normal();
+    auto canonical = fs::weakly_canonical(absolute, ec);
+    return ec ? absolute : canonical;
+}
+
+bool sameFile(const fs::path& a, const fs::path& b)
+{
+    return resolved(a) == resolved(b);
+}
+
+// Every output with its option, for the "same file" checks.
+std::vector<std::pair<std::string, fs::path>> outputsOf(const RenderJob& job)
+{
+    std::vector<std::pair<std::string, fs::path>> outputs { { "-o", job.output } };
+    if (job.energyCsv)
+        outputs.emplace_back("--energy-csv", *job.energyCsv);
+    if (job.energyPlot)
+        outputs.emplace_back("--energy-plot", *job.energyPlot);
+    if (job.spectrogram)
+        outputs.emplace_back("--spectrogram", *job.spectrogram);
+    return outputs;
+}
+
+void checkDistinctFiles(const RenderJob& job)
+{
+    const auto outputs = outputsOf(job);
+    for (std::size_t i = 0; i < outputs.size(); ++i)
+        for (std::size_t j = 0; j < i; ++j)
+            if (sameFile(outputs[i].second, outputs[j].second))
+                throw UserError(outputs[i].first + " and " + outputs[j].first + " name the same file");
+    if (job.midiFile)
+        for (const auto& [option, path] : outputs)
+            if (sameFile(*job.midiFile, path))
+                throw UserError("an output file would overwrite the MIDI file (" + option + ")");
+}
+
+std::optional<fs::path> absolutePath(const std::optional<fs::path>& path)
+{
+    return path ? std::optional(fs::absolute(*path).lexically_normal()) : std::nullopt;
+}
+
+// Commits every file in order; when one fails, the ones already committed are removed.
+void commitAll(const std::vector<AtomicFile*>& files)
+{
+    for (std::size_t i = 0; i < files.size(); ++i)
+    {
+        try
+        {
+            files[i]->commit();
+        }
+        catch (...)
+        {
+            for (std::size_t j = 0; j < i; ++j)
+                files[j]->discardCommitted();
+            throw;
+        }
+    }
+}
+
+int render(const RenderJob& job)
+{
+    installInterruptHandlers(); // before any temporary file exists
+    checkDistinctFiles(job);
+
+    // Inputs first: parameters, strikes, model (all cheap to reject).
+    const auto params = makeParameters(job);
+    const auto midiStrikes = job.midiFile ? readMidiStrikes(*job.midiFile) : std::vector<Strike> {};
+    const auto plan = makeRenderPlan(job, midiStrikes);
+    const auto config = makeConfig(job, params);
+    const auto drum = makeDrum(config);
+
+    const auto mic = job.selectedMic();
+    const auto mics = micChannels(mic);
+
+    // Then the outputs, before any rendering: a bad path fails here.
+    AtomicFile wavFile(job.output);
+    WavWriter wav(wavFile, plan.sampleRate_Hz, (int) mics.size());
+
+    std::optional<AtomicFile> csvFile;
+    std::unique_ptr<EnergyCsvWriter> csv;
+    if (job.energyCsv)
+    {
+        csvFile.emplace(*job.energyCsv);
+        csv = std::make_unique<EnergyCsvWriter>(*csvFile, plan.sampleRate_Hz);
+    }
+
+    std::optional<AtomicFile> energyPlotFile;
+    std::unique_ptr<EnergyPlot> energyPlot;
+    if (job.energyPlot)
+    {
+        energyPlotFile.emplace(*job.energyPlot);
+        energyPlot = std::make_unique<EnergyPlot>(
+            plan.numSamples, plan.sampleRate_Hz,
+            plan.strikes.empty() ? std::nullopt : std::optional(plan.strikes.front().sample));
+    }
+
+    std::optional<AtomicFile> spectrogramFile;
+    std::unique_ptr<Spectrogram> spectrogram;
+    const int analysed = analysedChannel(mic);
+    if (job.spectrogram)
+    {
+        spectrogramFile.emplace(*job.spectrogram);
+        spectrogram = std::make_unique<Spectrogram>(
+            plan.numSamples, plan.sampleRate_Hz, std::string(micName(mic == MicOutput::all ? MicOutput::mix : mic)));
+    }
+
+    RenderSinks sinks;
+    std::vector<const float*> channelPointers(mics.size());
+    sinks.audio = [&](std::span<const std::span<const float>> channels) {
+        throwIfInterrupted(); // once per block
+        for (std::size_t c = 0; c < channels.size(); ++c)
+            channelPointers[c] = channels[c].data();
+        wav.write(channelPointers.data(), (int) channels.front().size());
+        if (spectrogram)
+            spectrogram->add(channels[(std::size_t) analysed]);
+    };
+    if (csv || energyPlot)
+        sinks.energy = [&](std::int64_t first, std::span<const EnergyLedger> rows) {
+            if (csv)
+                csv->write(first, rows);
+            if (energyPlot)
+                energyPlot->add(first, rows);
+        };
+
+    const bool trackEnergy = job.lossless || job.energyCsv || job.energyPlot;
+    const auto stats = renderDrum(*drum, plan, mics, trackEnergy, sinks);
+
+    wav.finish();
+    if (csv)
+        csv->finish();
+    if (energyPlot)
+    {
+        throwIfInterrupted();
+        plot::writePng(energyPlot->draw(), *energyPlotFile);
+    }
+    if (spectrogram)
+    {
+        throwIfInterrupted();
+        plot::writePng(spectrogram->draw(), *spectrogramFile);
+    }
+    throwIfInterrupted();
+
+    std::vector<AtomicFile*> files { &wavFile };
+    for (auto* file : { &csvFile, &energyPlotFile, &spectrogramFile })
+        if (*file)
+            files.push_back(&**file);
+    commitAll(files);
+
+    const RenderReport report { job,
+                                plan,
+                                stats,
+                                fs::absolute(job.output).lexically_normal(),
+                                absolutePath(job.energyCsv),
+                                absolutePath(job.energyPlot),
+                                absolutePath(job.spectrogram) };
+    std::cout << (job.json ? formatJson(report) : formatSummary(report)) << std::flush;
+    return 0;
+}
+
+int run(const std::vector<std::string>& args)
+{
+    const auto commandLine = parseCommandLine(args);
+
+    switch (commandLine.action)
+    {
+        case CommandLine::Action::help:
+            std::cout << helpText() << std::flush;
+            return 0;
+        case CommandLine::Action::listParameters:
+            std::cout << describeParameters() << std::flush;
+            return 0;
+        case CommandLine::Action::render:
+            break;
+    }
+    return render(commandLine.job);
+}
+
+// Messages are printed as exactly one line.
+std::string oneLine(std::string message)
+{
+    std::replace(message.begin(), message.end(), '\n', ' ');
+    std::replace(message.begin(), message.end(), '\r', ' ');
+    while (! message.empty() && message.back() == ' ')
+        message.pop_back();
+    return message;
+}
+
+} // namespace
+} // namespace snaresim::render
+
+int main(int argc, char* argv[])
+{
+    using namespace snaresim::render;
+
+    try
+    {
+        return run(std::vector<std::string>(argv + 1, argv + argc));
+    }
+    catch (const Interrupted& e)
+    {
+        std::cerr << "snaresim-render: " << e.what() << "; no output written" << std::endl;
+        return 128 + e.signalNumber();
+    }
+    catch (const UserError& e)
+    {
+        std::cerr << "snaresim-render: error: " << oneLine(e.what()) << std::endl;
+        return 2;
+    }
+    catch (const std::exception& e)
+    {
+        std::cerr << "snaresim-render: internal error: " << oneLine(e.what()) << std::endl;
+        return 1;
+    }
+    catch (...)
+    {
+        std::cerr << "snaresim-render: internal error: unknown exception" << std::endl;
+        return 1;
+    }
+}

@@ -1,0 +1,46 @@
+#pragma once
+// The render loop: plays a RenderPlan on a snaresim::Drum, strikes at their exact samples,
+// and hands the audio of the asked microphones (and, with energy tracking, the energy
+// ledger of every sample) to the callers' sinks. Measures the time spent in the engine only.
+
+#include "RenderPlan.h"
+
+#include "Drum.h"
+#include "EnergyLedger.h"
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <span>
+
+namespace snaresim::render
+{
+
+struct RenderStats
+{
+    std::int64_t samples = 0;
+    double wallSeconds = 0.0;           // time inside the engine (strikes and steps) only
+    int channels = 1;
+    double peak = 0.0;                  // max |sample| over the finite samples of every channel
+    double rms = 0.0;                   // over the finite samples of every channel
+    std::int64_t nonfiniteSamples = 0;  // over every channel
+    int strikes = 0;                    // strikes played
+    // With energy tracking: max_n |balance_n - balance_0| / max_n total_n (0 when the drum
+    // never held energy); NaN when the ledger went non-finite.
+    std::optional<double> energyRelativeDriftMax;
+    SolverStats solver;
+};
+
+struct RenderSinks
+{
+    // channels[c] holds the block's samples of microphone mics[c] (all of one length).
+    std::function<void(std::span<const std::span<const float>> channels)> audio;
+    // Called only with energy tracking; rows[i] is the ledger after sample firstSample + i.
+    std::function<void(std::int64_t firstSample, std::span<const EnergyLedger> rows)> energy;
+};
+
+// mics: the signals to render, one channel each (drum.output(mic) after every step).
+RenderStats renderDrum(Drum& drum, const RenderPlan& plan, std::span<const Mic> mics, bool trackEnergy,
+                       const RenderSinks& sinks);
+
+} // namespace snaresim::render

@@ -1,0 +1,114 @@
+#include "Report.h"
+
+#include "Microphones.h"
+
+#include <juce_core/juce_core.h>
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+namespace snaresim::render
+{
+namespace
+{
+
+double secondsRendered(const RenderReport& r)
+{
+    return (double) r.stats.samples / r.plan.sampleRate_Hz;
+}
+
+double realtimeFactor(const RenderReport& r)
+{
+    return r.stats.wallSeconds > 0.0 ? secondsRendered(r) / r.stats.wallSeconds
+                                     : std::numeric_limits<double>::infinity();
+}
+
+juce::var text(const std::string& s)
+{
+    return juce::String(juce::CharPointer_UTF8(s.c_str()));
+}
+
+juce::var pathOrNull(const std::optional<std::filesystem::path>& path)
+{
+    return path ? text(path->string()) : juce::var();
+}
+
+std::string channelText(int channels)
+{
+    return channels == 1 ? "mono" : std::to_string(channels) + " channels";
+}
+
+std::string formatted(const char* format, auto... values)
+{
+    char buffer[256];
+    std::snprintf(buffer, sizeof buffer, format, values...);
+    return buffer;
+}
+
+} // namespace
+
+std::string formatJson(const RenderReport& r)
+{
+    auto* object = new juce::DynamicObject();
+    const juce::var root(object);
+
+    object->setProperty("output", text(r.output.string()));
+    object->setProperty("energy_csv", pathOrNull(r.energyCsv));
+    object->setProperty("energy_plot", pathOrNull(r.energyPlot));
+    object->setProperty("spectrogram", pathOrNull(r.spectrogram));
+    object->setProperty("sample_rate", (juce::int64) std::llround(r.plan.sampleRate_Hz)); // a whole number of Hz
+    object->setProperty("channels", r.stats.channels);
+    object->setProperty("mic", text(std::string(micName(r.job.selectedMic()))));
+    object->setProperty("samples", (juce::int64) r.stats.samples);
+    object->setProperty("seconds_rendered", secondsRendered(r));
+    object->setProperty("wall_seconds", r.stats.wallSeconds);
+    object->setProperty("realtime_factor", realtimeFactor(r));
+    object->setProperty("peak", r.stats.peak);
+    object->setProperty("rms", r.stats.rms);
+    object->setProperty("nonfinite_samples", (juce::int64) r.stats.nonfiniteSamples);
+    object->setProperty("strikes", r.stats.strikes);
+    object->setProperty("strikes_outside", r.plan.strikesOutside);
+    object->setProperty("preset", r.job.preset ? text(*r.job.preset) : juce::var());
+    object->setProperty("lossless", r.job.lossless);
+    object->setProperty("energy_tracking", r.stats.energyRelativeDriftMax.has_value());
+    if (r.stats.energyRelativeDriftMax)
+        object->setProperty("energy_relative_drift_max", *r.stats.energyRelativeDriftMax);
+    object->setProperty("solver_max_iterations", r.stats.solver.maxIterations);
+    object->setProperty("snare_max_iterations", r.stats.solver.maxSnareIterations);
+    object->setProperty("snare_max_penetration_m", r.stats.solver.maxSnarePenetration_m);
+    object->setProperty("solver_fallbacks", (juce::int64) r.stats.solver.fallbacks);
+
+    return juce::JSON::toString(root, true).toStdString() + "\n";
+}
+
+std::string formatSummary(const RenderReport& r)
+{
+    std::string s;
+    s += "wrote " + r.output.string()
+         + formatted(" (%.3f s, %.0f Hz, ", secondsRendered(r), r.plan.sampleRate_Hz)
+         + channelText(r.stats.channels) + " (" + std::string(micName(r.job.selectedMic())) + "), 32-bit float)\n";
+    if (r.energyCsv)
+        s += "wrote " + r.energyCsv->string() + " (energy ledger, one row per sample)\n";
+    if (r.energyPlot)
+        s += "wrote " + r.energyPlot->string() + " (energy plot)\n";
+    if (r.spectrogram)
+        s += "wrote " + r.spectrogram->string() + " (spectrogram)\n";
+    s += formatted("strikes: %d", r.stats.strikes);
+    if (r.plan.strikesOutside > 0)
+        s += formatted(" (%d more at or after the end, not played)", r.plan.strikesOutside);
+    s += "\n";
+    s += formatted("peak %.6g, rms %.6g, non-finite samples %lld\n", r.stats.peak, r.stats.rms,
+                (long long) r.stats.nonfiniteSamples);
+    s += formatted("render time %.3f s, %.2fx real time\n", r.stats.wallSeconds, realtimeFactor(r));
+    s += formatted("solver: max %d Newton iterations", r.stats.solver.maxIterations)
+         + formatted(" (snares %d)", r.stats.solver.maxSnareIterations)
+         + formatted(", max snare penetration %.3g m\n", r.stats.solver.maxSnarePenetration_m);
+    if (r.stats.energyRelativeDriftMax)
+        s += formatted("energy balance drift (max, relative): %.3g\n", *r.stats.energyRelativeDriftMax);
+    if (r.stats.solver.fallbacks > 0)
+        s += formatted("warning: the contact solver fell back %ld time(s)\n", r.stats.solver.fallbacks);
+    return s;
+}
+
+} // namespace snaresim::render

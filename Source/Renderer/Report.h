@@ -1,0 +1,33 @@
+#pragma once
+// What snaresim-render prints after a successful render: one JSON object (--json) or a
+// short human-readable summary.
+
+#include "RenderJob.h"
+#include "RenderPlan.h"
+#include "Renderer.h"
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+namespace snaresim::render
+{
+
+struct RenderReport
+{
+    const RenderJob& job;
+    const RenderPlan& plan;
+    const RenderStats& stats;
+    std::filesystem::path output;                   // absolute
+    std::optional<std::filesystem::path> energyCsv; // absolute
+    std::optional<std::filesystem::path> energyPlot; // absolute
+    std::optional<std::filesystem::path> spectrogram; // absolute
+};
+
+// One line, ends with a newline. Non-finite numbers are written as null.
+std::string formatJson(const RenderReport& report);
+
+// A few lines, ends with a newline.
+std::string formatSummary(const RenderReport& report);
+
+} // namespace snaresim::render

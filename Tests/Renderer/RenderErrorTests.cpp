@@ -1,0 +1,235 @@
+// snaresim-render's bad input: every kind exits with code 2, prints exactly one line on
+// stderr starting with "snaresim-render: error: ", and leaves nothing in the target
+// directory (no output, no temporary).
+
+#include "RendererTestSupport.h"
+
+#include "Parameters.h"
+
+#include <catch2/catch.hpp>
+
+#include <chrono>
+#include <csignal>
+#include <fstream>
+#include <thread>
+
+using namespace rendertest;
+
+namespace
+{
+
+const std::string kPrefix = "snaresim-render: error: ";
+
+// Runs the renderer with these arguments (after "-o OUT/out.wav" unless withOutput is
+// false) and checks the error contract. `mentions` must appear in the message.
+void requireRejected(const TempDir& dir, std::vector<std::string> args, const std::string& mentions,
+                     bool withOutput = true)
+{
+    const auto before = entries(dir.out());
+    if (withOutput)
+        args.insert(args.begin(), { "-o", (dir.out() / "out.wav").string() });
+
+    std::string command;
+    for (const auto& a : args)
+        command += " " + a;
+    INFO("snaresim-render" << command);
+
+    const auto run = runRenderer(args, dir.root() / "capture");
+    INFO("stderr: " << run.err);
+    CHECK(run.exitCode == 2);
+    CHECK(run.err.rfind(kPrefix, 0) == 0);
+    CHECK(lines(run.err).size() == 1);
+    CHECK((! run.err.empty() && run.err.back() == '\n'));
+    CHECK(run.err.find(mentions) != std::string::npos);
+    CHECK(run.out.empty());
+    CHECK(entries(dir.out()) == before);
+}
+
+} // namespace
+
+TEST_CASE("bad input: unknown options, stray arguments and missing values", "[renderer][errors]")
+{
+    TempDir dir;
+    requireRejected(dir, { "--hit", "0:100", "--bogus" }, "--bogus");
+    requireRejected(dir, { "--hit", "0:100", "-x" }, "-x");
+    requireRejected(dir, { "--hit", "0:100", "stray.wav" }, "stray.wav");
+    requireRejected(dir, { "--hit", "0:100", "--seconds" }, "--seconds");
+    requireRejected(dir, { "--hit", "--seconds", "1" }, "--hit");
+    requireRejected(dir, { "--hit", "0:100", "--json=yes" }, "--json");
+    requireRejected(dir, { "--hit", "0:100", "--seconds", "1", "--seconds", "2" }, "--seconds");
+    requireRejected(dir, { "--hit", "0:100", "-o" }, "-o", false);
+}
+
+TEST_CASE("bad input: missing -o, or nothing to play", "[renderer][errors]")
+{
+    TempDir dir;
+    requireRejected(dir, { "--hit", "0:100" }, "-o", false);
+    requireRejected(dir, { "--seconds", "1" }, "--hit");
+}
+
+TEST_CASE("bad input: bad numbers", "[renderer][errors]")
+{
+    TempDir dir;
+    const std::vector<std::pair<std::vector<std::string>, std::string>> cases {
+        { { "--hit", "0:100", "--seconds", "abc" }, "--seconds" },
+        { { "--hit", "0:100", "--seconds", "0" }, "--seconds" },
+        { { "--hit", "0:100", "--seconds", "-1" }, "--seconds" },
+        { { "--hit", "0:100", "--seconds", "nan" }, "--seconds" },
+        { { "--hit", "0:100", "--seconds", "inf" }, "--seconds" },
+        { { "--hit", "0:100", "--seconds", "1e400" }, "--seconds" },
+        { { "--hit", "0:100", "--seconds", "2s" }, "--seconds" },
+        { { "--hit", "0:100", "--seconds", "" }, "--seconds" },
+        { { "--hit", "0:100", "--seconds", "1e-9" }, "--seconds" },
+        { { "--hit", "0:100", "--seconds", "100000" }, "--seconds" },
+        { { "--hit", "1:200" }, "velocity" },
+        { { "--hit", "1:0" }, "velocity" },
+        { { "--hit", "1:64.5" }, "velocity" },
+        { { "--hit", "-1:100" }, "time" },
+        { { "--hit", "nan:100" }, "time" },
+        { { "--hit", "x:100" }, "time" },
+        { { "--hit", "0.5" }, "--hit" },
+        { { "--hit", "0:100", "--sample-rate", "abc" }, "--sample-rate" },
+        { { "--hit", "0:100", "--sample-rate", "4000" }, "--sample-rate" },
+        { { "--hit", "0:100", "--sample-rate", "400000" }, "--sample-rate" },
+        { { "--hit", "0:100", "--sample-rate", "44100.5" }, "--sample-rate" },
+        { { "--hit", "0:100", "--set", "mallet_mass=heavy" }, "mallet_mass" },
+        // Integer, toggle and choice parameters take whole numbers only.
+        { { "--hit", "0:100", "--set", "snares_engaged=0.5" }, "snares_engaged" },
+        { { "--hit", "0:100", "--set", "snare_count=12.5" }, "snare_count" },
+        { { "--hit", "0:100", "--set", "air_model=0.5" }, "air_model" },
+        { { "--hit", "0:100", "--set", "air_model=bogus" }, "air_model" },
+    };
+    for (const auto& [args, mentions] : cases)
+        requireRejected(dir, args, mentions);
+}
+
+TEST_CASE("bad input: unknown parameters, out-of-range values, unknown presets", "[renderer][errors]")
+{
+    TempDir dir;
+    requireRejected(dir, { "--hit", "0:100", "--set", "no_such_parameter=1" }, "no_such_parameter");
+    requireRejected(dir, { "--hit", "0:100", "--set", "mallet_mass" }, "mallet_mass");
+    requireRejected(dir, { "--hit", "0:100", "--preset", "No Such Preset" }, "No Such Preset");
+
+    for (const auto& spec : snaresim::parameterSpecs())
+    {
+        const double span = spec.maxValue - spec.minValue;
+        for (const double value : { spec.maxValue + 0.5 * span + 1.0, spec.minValue - 0.5 * span - 1.0 })
+        {
+            const auto assignment = std::string(spec.key) + "=" + std::to_string(value);
+            requireRejected(dir, { "--hit", "0:100", "--set", assignment }, std::string(spec.key));
+        }
+    }
+}
+
+TEST_CASE("bad input: --model and --mic take only their names", "[renderer][errors]")
+{
+    TempDir dir;
+    requireRejected(dir, { "--hit", "0:100", "--model", "bogus" }, "--model");
+    requireRejected(dir, { "--hit", "0:100", "--model", "" }, "--model");
+    requireRejected(dir, { "--hit", "0:100", "--model", "Cavity" }, "--model");
+    requireRejected(dir, { "--hit", "0:100", "--model", "none", "--model", "cavity" }, "--model");
+    requireRejected(dir, { "--hit", "0:100", "--model" }, "--model");
+    requireRejected(dir, { "--hit", "0:100", "--mic", "left" }, "--mic");
+    requireRejected(dir, { "--hit", "0:100", "--mic", "all", "--mic", "mix" }, "--mic");
+}
+
+TEST_CASE("bad input: a grid or sample rate the scheme cannot take", "[renderer][errors]")
+{
+    TempDir dir;
+    // At 8 kHz, 4 times the stability bound (eq. 39) leaves fewer than 4 grid points per
+    // radius; the engine throws std::invalid_argument, reported as "the model cannot be ...".
+    requireRejected(dir, { "--hit", "0:100", "--sample-rate", "8000", "--set", "grid_coarseness=4" },
+                    "the model cannot be");
+}
+
+TEST_CASE("bad input: unreadable or invalid MIDI files", "[renderer][errors]")
+{
+    TempDir dir;
+    const auto garbage = dir.in() / "garbage.mid";
+    std::ofstream(garbage) << "this is not a MIDI file, not even close\n";
+    const auto empty = dir.in() / "empty.mid";
+    std::ofstream { empty };
+
+    requireRejected(dir, { "--midi", (dir.in() / "missing.mid").string() }, "missing.mid");
+    requireRejected(dir, { "--midi", garbage.string() }, "garbage.mid");
+    requireRejected(dir, { "--midi", empty.string() }, "empty.mid");
+    requireRejected(dir, { "--midi", dir.in().string() }, "directory");
+}
+
+TEST_CASE("bad input: unwritable outputs fail before rendering and leave nothing behind", "[renderer][errors]")
+{
+    TempDir dir;
+    const auto missing = dir.out() / "no-such-dir" / "out.wav";
+    requireRejected(dir, { "-o", missing.string(), "--hit", "0:100" }, "does not exist", false);
+
+    // The target is a directory.
+    fs::create_directory(dir.out() / "sub");
+    requireRejected(dir, { "-o", (dir.out() / "sub").string(), "--hit", "0:100" }, "directory", false);
+    CHECK(fs::is_directory(dir.out() / "sub"));
+    fs::remove(dir.out() / "sub");
+
+    // The WAV is fine but the energy CSV is not: neither appears.
+    requireRejected(dir, { "--hit", "0:100", "--energy-csv", (dir.out() / "nowhere" / "e.csv").string() },
+                    "does not exist");
+
+    // Both outputs on the same file.
+    requireRejected(dir, { "--hit", "0:100", "--energy-csv", (dir.out() / "out.wav").string() }, "same file");
+    requireRejected(dir, { "--hit", "0:100", "--energy-csv", (dir.out() / "." / "out.wav").string() }, "same file");
+
+    // The PNG outputs: a missing directory, a directory, or the name of another output.
+    // Every other output is fine, and none appears.
+    const auto energy = (dir.out() / "e.png").string();
+    const auto spectrum = (dir.out() / "s.png").string();
+    requireRejected(dir, { "--hit", "0:100", "--energy-csv", (dir.out() / "e.csv").string(), "--spectrogram", spectrum,
+                           "--energy-plot", (dir.out() / "nowhere" / "e.png").string() },
+                    "does not exist");
+    requireRejected(dir, { "--hit", "0:100", "--energy-plot", energy, "--spectrogram",
+                           (dir.out() / "nowhere" / "s.png").string() },
+                    "does not exist");
+    fs::create_directory(dir.out() / "sub.png");
+    requireRejected(dir, { "--hit", "0:100", "--energy-plot", energy, "--spectrogram", (dir.out() / "sub.png").string() },
+                    "directory");
+    fs::remove(dir.out() / "sub.png");
+    requireRejected(dir, { "--hit", "0:100", "--energy-plot", (dir.out() / "out.wav").string() }, "same file");
+    requireRejected(dir, { "--hit", "0:100", "--spectrogram", energy, "--energy-plot", energy }, "same file");
+    requireRejected(dir, { "--hit", "0:100", "--energy-csv", spectrum, "--spectrogram", spectrum }, "same file");
+
+    // A directory without write permission (skipped when running as root).
+    const auto locked = dir.root() / "locked";
+    fs::create_directory(locked);
+    fs::permissions(locked, fs::perms::owner_read | fs::perms::owner_exec);
+    if (std::ofstream(locked / "probe").good())
+    {
+        WARN("running with permissions that ignore directory modes; skipping the read-only case");
+    }
+    else
+    {
+        requireRejected(dir, { "-o", (locked / "out.wav").string(), "--hit", "0:100" }, "locked", false);
+        CHECK(entries(locked).empty());
+    }
+    fs::permissions(locked, fs::perms::owner_all);
+}
+
+TEST_CASE("interrupted: SIGTERM during a render leaves no output and no temporary", "[renderer][errors]")
+{
+    TempDir dir;
+    const auto capture = dir.root() / "capture";
+    const int pid = startRenderer({ "-o", (dir.out() / "long.wav").string(), "--energy-csv",
+                                    (dir.out() / "long.csv").string(), "--energy-plot",
+                                    (dir.out() / "long-energy.png").string(), "--spectrogram",
+                                    (dir.out() / "long-spectrum.png").string(), "--hit", "0:100", "--seconds", "600" },
+                                  capture);
+
+    // Wait until it is rendering (its four temporaries exist), then stop it.
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (entries(dir.out()).size() < 4 && std::chrono::steady_clock::now() < deadline)
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    CHECK(entries(dir.out()).size() == 4);
+    ::kill(pid, SIGTERM);
+
+    const auto run = waitForRenderer(pid, capture);
+    INFO("stderr: " << run.err);
+    CHECK(run.exitCode == 128 + SIGTERM);
+    CHECK(lines(run.err).size() == 1);
+    CHECK(entries(dir.out()).empty());
+}

@@ -1,0 +1,335 @@
+// snaresim-render's successful runs: the WAV, the JSON report, MIDI input, the energy
+// CSV, --list-params and --help.
+
+#include "RendererTestSupport.h"
+
+#include "Parameters.h"
+#include "Presets.h"
+
+#include <catch2/catch.hpp>
+
+#include <juce_audio_basics/juce_audio_basics.h>
+
+#include <charconv>
+#include <cmath>
+
+using namespace rendertest;
+
+namespace
+{
+
+// Checks the run succeeded and the WAV is mono 32-bit float, of this length and rate,
+// non-silent and finite. Returns its samples.
+std::vector<float> requireGoodWav(const RunResult& run, const fs::path& file, double rate, long long length)
+{
+    INFO("stderr: " << run.err);
+    REQUIRE(run.exitCode == 0);
+    REQUIRE(fs::is_regular_file(file));
+
+    const auto wav = readWav(file);
+    REQUIRE(wav.opened);
+    CHECK(wav.sampleRate == rate);
+    CHECK(wav.channels == 1);
+    CHECK(wav.bitsPerSample == 32);
+    CHECK(wav.floatingPoint);
+    CHECK(wav.length == length);
+
+    float peak = 0.0f;
+    long long nonfinite = 0;
+    for (const float x : wav.samples)
+    {
+        if (! std::isfinite(x))
+            ++nonfinite;
+        else
+            peak = std::max(peak, std::abs(x));
+    }
+    CHECK(nonfinite == 0);
+    CHECK(peak > 1.0e-6f);
+    return wav.samples;
+}
+
+double number(const juce::var& object, const char* key)
+{
+    const auto& value = object[key];
+    INFO("key " << key);
+    REQUIRE((value.isDouble() || value.isInt() || value.isInt64()));
+    return (double) value;
+}
+
+} // namespace
+
+TEST_CASE("hits: --hit renders a mono float WAV of the asked length and rate", "[renderer]")
+{
+    TempDir dir;
+    const auto wav = dir.out() / "hits.wav";
+
+    // Lengths are kept short: the full model renders slower than real time. The rates are
+    // 44.1 / 48 kHz, which the engine must always accept (lower ones depend on its grid rules).
+    SECTION("48 kHz, two hits")
+    {
+        const auto run = runRenderer({ "-o", wav.string(), "--hit", "0:100", "--hit", "0.5:60",
+                                       "--seconds", "0.6", "--sample-rate", "48000" },
+                                     dir.root() / "capture");
+        const auto samples = requireGoodWav(run, wav, 48000.0, 28800);
+
+        // The second hit, at sample 24000 exactly, brings the level up again.
+        auto peakIn = [&](std::size_t from, std::size_t to) {
+            float peak = 0.0f;
+            for (std::size_t i = from; i < to; ++i)
+                peak = std::max(peak, std::abs(samples[i]));
+            return peak;
+        };
+        CHECK(peakIn(24000, 26400) > 2.0f * peakIn(21600, 24000));
+    }
+
+    SECTION("default sample rate: 48 kHz")
+    {
+        const auto run = runRenderer({ "-o", wav.string(), "--hit", "0:127", "--seconds", "0.1" },
+                                     dir.root() / "capture");
+        requireGoodWav(run, wav, 48000.0, 4800);
+    }
+
+    SECTION("default length: 2 s")
+    {
+        const auto run = runRenderer({ "-o", wav.string(), "--hit", "0:127", "--sample-rate", "44100" },
+                                     dir.root() / "capture");
+        requireGoodWav(run, wav, 44100.0, 88200);
+    }
+
+    SECTION("44.1 kHz, a length that is not a whole number of samples")
+    {
+        const auto run = runRenderer({ "--hit=0.01:90", "--seconds=0.30001", "--sample-rate=44100", "--output", wav.string() },
+                                     dir.root() / "capture");
+        requireGoodWav(run, wav, 44100.0, std::llround(0.30001 * 44100.0));
+    }
+
+    SECTION("a preset and --set")
+    {
+        const auto& presets = snaresim::factoryPresets();
+        REQUIRE(! presets.empty());
+        const auto run = runRenderer({ "-o", wav.string(), "--hit", "0:100", "--seconds", "0.25",
+                                       "--sample-rate", "44100", "--preset", std::string(presets.back().name),
+                                       "--set", "mallet_mass=0.02", "--set", "output_gain=-6" },
+                                     dir.root() / "capture");
+        requireGoodWav(run, wav, 44100.0, 11025);
+    }
+
+    // Nothing but the output in the target directory (no temporaries).
+    CHECK(entries(dir.out()) == std::vector<std::string> { "hits.wav" });
+}
+
+TEST_CASE("json: --json prints one JSON object with the render statistics", "[renderer]")
+{
+    TempDir dir;
+    const auto wav = dir.out() / "a.wav";
+    const auto run = runRenderer({ "-o", wav.string(), "--hit", "0:100", "--hit", "0.1:80", "--seconds", "0.4",
+                                   "--sample-rate", "44100", "--json" },
+                                 dir.root() / "capture");
+    INFO("stdout: " << run.out << "\nstderr: " << run.err);
+    REQUIRE(run.exitCode == 0);
+    CHECK(run.err.empty());
+    CHECK(lines(run.out).size() == 1);
+
+    const auto json = parseJson(run.out);
+    REQUIRE(json.isObject());
+    for (const char* key : { "seconds_rendered", "wall_seconds", "realtime_factor", "peak", "rms",
+                             "nonfinite_samples", "sample_rate", "output" })
+    {
+        INFO("key " << key);
+        CHECK(json.hasProperty(key));
+    }
+
+    CHECK(number(json, "seconds_rendered") == Approx(0.4));
+    CHECK(number(json, "sample_rate") == 44100.0);
+    CHECK(number(json, "nonfinite_samples") == 0.0);
+    CHECK(number(json, "peak") > 0.0);
+    CHECK(number(json, "rms") > 0.0);
+    CHECK(number(json, "rms") <= number(json, "peak"));
+    CHECK(number(json, "wall_seconds") > 0.0);
+    CHECK(number(json, "realtime_factor")
+          == Approx(number(json, "seconds_rendered") / number(json, "wall_seconds")).epsilon(1e-6));
+    CHECK(number(json, "strikes") == 2.0);
+    CHECK(json["output"].toString().toStdString() == fs::absolute(wav).string());
+    CHECK(! json.hasProperty("energy_relative_drift_max"));
+    CHECK(number(json, "channels") == 1.0);
+    CHECK(json["mic"].toString() == "mix");
+    for (const char* key : { "energy_csv", "energy_plot", "spectrogram" })
+    {
+        INFO("key " << key);
+        CHECK(json.hasProperty(key));
+        CHECK(json[key].isVoid()); // null
+    }
+    CHECK(number(json, "solver_max_iterations") >= 0.0);
+    CHECK(number(json, "snare_max_iterations") >= 0.0);
+    CHECK(number(json, "snare_max_iterations") <= number(json, "solver_max_iterations"));
+    CHECK(number(json, "snare_max_penetration_m") >= 0.0);
+    CHECK(number(json, "solver_fallbacks") >= 0.0);
+
+    // The peak it reports is the file's.
+    const auto data = readWav(wav);
+    float peak = 0.0f;
+    for (const float x : data.samples)
+        peak = std::max(peak, std::abs(x));
+    CHECK(number(json, "peak") == Approx(peak));
+}
+
+TEST_CASE("lossless: --lossless --json reports an energy balance drift below 1e-10", "[renderer]")
+{
+    TempDir dir;
+    const auto wav = dir.out() / "lossless.wav";
+    const auto run = runRenderer({ "-o", wav.string(), "--hit", "0:127", "--hit", "0.05:100", "--seconds", "0.3",
+                                   "--sample-rate", "44100", "--lossless", "--json" },
+                                 dir.root() / "capture");
+    INFO("stdout: " << run.out << "\nstderr: " << run.err);
+    REQUIRE(run.exitCode == 0);
+
+    const auto json = parseJson(run.out);
+    REQUIRE(json.isObject());
+    REQUIRE(json.hasProperty("energy_relative_drift_max"));
+    const double drift = number(json, "energy_relative_drift_max");
+    CHECK(drift >= 0.0);
+    CHECK(drift < 1.0e-10);
+    CHECK(number(json, "nonfinite_samples") == 0.0);
+    CHECK(number(json, "peak") > 0.0);
+}
+
+TEST_CASE("midi: --midi renders the note-ons of a Standard MIDI file, tempo map honoured", "[renderer]")
+{
+    TempDir dir;
+    const auto midiPath = dir.in() / "groove.mid";
+    const auto wav = dir.out() / "groove.wav";
+
+    // Track 0: tempo 600 bpm, then 300 bpm from beat 1. Track 1: notes. 960 ticks per beat.
+    //   beat 0 (0 s): note 38 vel 100; beat 0.5: a 0-velocity note-on (a note-off);
+    //   beat 1 (0.1 s): note 40 vel 60; beat 2 (0.1 + 0.2 = 0.3 s): note 38 vel 127.
+    {
+        juce::MidiMessageSequence tempo;
+        tempo.addEvent(juce::MidiMessage::tempoMetaEvent(100000), 0.0);
+        tempo.addEvent(juce::MidiMessage::tempoMetaEvent(200000), 960.0);
+        tempo.addEvent(juce::MidiMessage::endOfTrack(), 1920.0);
+
+        juce::MidiMessageSequence notes;
+        notes.addEvent(juce::MidiMessage::noteOn(10, 38, (juce::uint8) 100), 0.0);
+        notes.addEvent(juce::MidiMessage::noteOn(10, 38, (juce::uint8) 0), 480.0); // a note-off
+        notes.addEvent(juce::MidiMessage::noteOn(10, 40, (juce::uint8) 60), 960.0);
+        notes.addEvent(juce::MidiMessage::noteOff(10, 40), 1200.0);
+        notes.addEvent(juce::MidiMessage::noteOn(10, 38, (juce::uint8) 127), 1920.0);
+        notes.addEvent(juce::MidiMessage::noteOff(10, 38), 2000.0);
+
+        juce::MidiFile file;
+        file.setTicksPerQuarterNote(960);
+        file.addTrack(tempo);
+        file.addTrack(notes);
+
+        juce::FileOutputStream out(juce::File(fs::absolute(midiPath).string()));
+        REQUIRE(out.openedOk());
+        REQUIRE(file.writeTo(out, 1));
+    }
+
+    SECTION("length: last note-on + 2 s")
+    {
+        const auto run = runRenderer({ "-o", wav.string(), "--midi", midiPath.string(), "--sample-rate", "44100",
+                                       "--json" },
+                                     dir.root() / "capture");
+        requireGoodWav(run, wav, 44100.0, std::llround(2.3 * 44100.0));
+
+        const auto json = parseJson(run.out);
+        REQUIRE(json.isObject());
+        CHECK(number(json, "strikes") == 3.0);
+        CHECK(number(json, "seconds_rendered") == Approx(2.3));
+    }
+
+    SECTION("--seconds cuts it short; later note-ons are not played")
+    {
+        const auto run = runRenderer({ "-o", wav.string(), "--midi", midiPath.string(), "--sample-rate", "44100",
+                                       "--seconds", "0.2", "--json" },
+                                     dir.root() / "capture");
+        requireGoodWav(run, wav, 44100.0, 8820);
+
+        const auto json = parseJson(run.out);
+        REQUIRE(json.isObject());
+        CHECK(number(json, "strikes") == 2.0);
+    }
+
+    CHECK(entries(dir.out()) == std::vector<std::string> { "groove.wav" });
+}
+
+TEST_CASE("energy csv: --energy-csv writes the header and one row per sample", "[renderer]")
+{
+    TempDir dir;
+    const auto wav = dir.out() / "e.wav";
+    const auto csv = dir.out() / "e.csv";
+    const double rate = 44100.0;
+    const long long length = 4410; // 0.1 s
+
+    const auto run = runRenderer({ "-o", wav.string(), "--energy-csv", csv.string(), "--hit", "0.01:100",
+                                   "--seconds", "0.1", "--sample-rate", "44100" },
+                                 dir.root() / "capture");
+    requireGoodWav(run, wav, rate, length);
+    REQUIRE(fs::is_regular_file(csv));
+
+    const auto rows = lines(readText(csv));
+    REQUIRE(rows.size() == (std::size_t) length + 1);
+    // Every field of EnergyLedger: the five components, their total, and the balance terms.
+    CHECK(rows.front()
+          == "time_s,batter_J,carry_J,mallets_J,snares_J,cavity_J,total_J,dissipated_J,injected_J,balance_J");
+
+    double maxTotal = 0.0, firstBalance = 0.0, maxDeviation = 0.0;
+    for (std::size_t i = 1; i < rows.size(); ++i)
+    {
+        std::vector<double> fields;
+        const char* p = rows[i].data();
+        const char* end = p + rows[i].size();
+        while (p <= end)
+        {
+            double v = 0.0;
+            const auto [next, ec] = std::from_chars(p, end, v);
+            REQUIRE(ec == std::errc {});
+            fields.push_back(v);
+            p = next + 1; // skip the comma
+        }
+        INFO("row " << i << ": " << rows[i]);
+        REQUIRE(fields.size() == 10);
+        CHECK(fields[0] == Approx((double) (i - 1) / rate));
+        for (const double v : fields)
+            REQUIRE(std::isfinite(v));
+        CHECK(fields[6] == Approx(fields[1] + fields[2] + fields[3] + fields[4] + fields[5])); // total
+        CHECK(fields[9] == Approx(fields[6] + fields[7] - fields[8]).margin(1e-12)); // balance
+
+        maxTotal = std::max(maxTotal, fields[6]);
+        if (i == 1)
+            firstBalance = fields[9];
+        maxDeviation = std::max(maxDeviation, std::abs(fields[9] - firstBalance));
+    }
+    CHECK(maxTotal > 0.0);                       // the strike put energy in
+    CHECK(maxDeviation <= 1.0e-9 * maxTotal);    // balance constant (lossy run)
+
+    CHECK(entries(dir.out()) == std::vector<std::string> { "e.csv", "e.wav" });
+}
+
+TEST_CASE("list params: --list-params lists every parameter", "[renderer]")
+{
+    TempDir dir;
+    const auto run = runRenderer({ "--list-params" }, dir.root() / "capture");
+    REQUIRE(run.exitCode == 0);
+    CHECK(run.err.empty());
+    CHECK(run.out == snaresim::describeParameters());
+    for (const auto& spec : snaresim::parameterSpecs())
+    {
+        INFO("parameter " << spec.key);
+        CHECK(run.out.find(std::string(spec.key)) != std::string::npos);
+    }
+}
+
+TEST_CASE("help: --help prints the usage and exits 0", "[renderer]")
+{
+    TempDir dir;
+    for (const char* option : { "--help", "-h" })
+    {
+        const auto run = runRenderer({ option }, dir.root() / "capture");
+        CHECK(run.exitCode == 0);
+        CHECK(run.out.find("Usage:") != std::string::npos);
+        CHECK(run.out.find("--hit") != std::string::npos);
+        CHECK(run.err.empty());
+    }
+}

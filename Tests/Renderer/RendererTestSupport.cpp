@@ -1,0 +1,198 @@
+#include "RendererTestSupport.h"
+
+#include <juce_audio_formats/juce_audio_formats.h>
+#include <juce_graphics/juce_graphics.h>
+
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <set>
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+extern char** environ;
+
+namespace rendertest
+{
+
+TempDir::TempDir()
+{
+    auto pattern = (fs::temp_directory_path() / "snaresim-render-test-XXXXXX").string();
+    if (::mkdtemp(pattern.data()) == nullptr)
+        throw std::runtime_error("mkdtemp failed");
+    base = pattern;
+    fs::create_directory(in());
+    fs::create_directory(out());
+    fs::create_directory(base / "capture");
+}
+
+TempDir::~TempDir()
+{
+    std::error_code ec;
+    fs::remove_all(base, ec);
+}
+
+int startRenderer(const std::vector<std::string>& args, const fs::path& captureDir)
+{
+    const auto outFile = (captureDir / "stdout.txt").string();
+    const auto errFile = (captureDir / "stderr.txt").string();
+
+    std::vector<std::string> argvStrings { SNARESIM_RENDER_EXE };
+    argvStrings.insert(argvStrings.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (auto& s : argvStrings)
+        argv.push_back(s.data());
+    argv.push_back(nullptr);
+
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 1, outFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&actions, 2, errFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+
+    pid_t pid = 0;
+    const int spawned = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&actions);
+    if (spawned != 0)
+        throw std::runtime_error("cannot run " SNARESIM_RENDER_EXE);
+    return (int) pid;
+}
+
+RunResult waitForRenderer(int pid, const fs::path& captureDir)
+{
+    int status = 0;
+    while (waitpid((pid_t) pid, &status, 0) < 0)
+        if (errno != EINTR)
+            throw std::runtime_error("waitpid failed");
+
+    RunResult result;
+    result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    result.out = readText(captureDir / "stdout.txt");
+    result.err = readText(captureDir / "stderr.txt");
+    return result;
+}
+
+RunResult runRenderer(const std::vector<std::string>& args, const fs::path& captureDir)
+{
+    return waitForRenderer(startRenderer(args, captureDir), captureDir);
+}
+
+std::vector<std::string> entries(const fs::path& directory)
+{
+    std::vector<std::string> names;
+    for (const auto& entry : fs::directory_iterator(directory))
+        names.push_back(entry.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+WavData readWav(const fs::path& file)
+{
+    WavData data;
+    juce::WavAudioFormat wav;
+    auto stream = std::make_unique<juce::FileInputStream>(juce::File(fs::absolute(file).string()));
+    if (! stream->openedOk())
+        return data;
+
+    std::unique_ptr<juce::AudioFormatReader> reader(wav.createReaderFor(stream.release(), true));
+    if (reader == nullptr)
+        return data;
+
+    data.opened = true;
+    data.sampleRate = reader->sampleRate;
+    data.channels = (int) reader->numChannels;
+    data.bitsPerSample = (int) reader->bitsPerSample;
+    data.floatingPoint = reader->usesFloatingPointData;
+    data.length = (long long) reader->lengthInSamples;
+
+    juce::AudioBuffer<float> buffer((int) reader->numChannels, (int) reader->lengthInSamples);
+    reader->read(&buffer, 0, (int) reader->lengthInSamples, 0, true, true);
+    for (int c = 0; c < buffer.getNumChannels(); ++c)
+        data.channelSamples.emplace_back(buffer.getReadPointer(c), buffer.getReadPointer(c) + buffer.getNumSamples());
+    if (! data.channelSamples.empty())
+        data.samples = data.channelSamples.front();
+    return data;
+}
+
+PngData readPng(const fs::path& file)
+{
+    PngData data;
+    const auto bytes = readText(file);
+    data.pngSignature = bytes.rfind("\x89PNG\r\n\x1a\n", 0) == 0;
+    const auto image = juce::ImageFileFormat::loadFrom(juce::File(fs::absolute(file).string()));
+    if (! image.isValid())
+        return data;
+    data.loaded = true;
+    data.width = image.getWidth();
+    data.height = image.getHeight();
+    return data;
+}
+
+int distinctColours(const fs::path& file, int x, int y, int width, int height, int limit)
+{
+    const auto image = juce::ImageFileFormat::loadFrom(juce::File(fs::absolute(file).string()));
+    if (! image.isValid())
+        return 0;
+    std::set<juce::uint32> colours;
+    const auto area = juce::Rectangle<int>(x, y, width, height).getIntersection(image.getBounds());
+    for (int py = area.getY(); py < area.getBottom(); ++py)
+        for (int px = area.getX(); px < area.getRight(); ++px)
+        {
+            colours.insert(image.getPixelAt(px, py).getARGB());
+            if ((int) colours.size() >= limit)
+                return limit;
+        }
+    return (int) colours.size();
+}
+
+float peakOf(const std::vector<float>& signal)
+{
+    float peak = 0.0f;
+    for (const float x : signal)
+        peak = std::max(peak, std::abs(x));
+    return peak;
+}
+
+double rmsDifference(const std::vector<float>& a, const std::vector<float>& b)
+{
+    const auto n = std::min(a.size(), b.size());
+    double sum = 0.0;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+        const double d = (double) a[i] - (double) b[i];
+        sum += d * d;
+    }
+    return n > 0 ? std::sqrt(sum / (double) n) : 0.0;
+}
+
+std::string readText(const fs::path& file)
+{
+    std::ifstream in(file, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+juce::var parseJson(const std::string& text)
+{
+    juce::var result;
+    if (juce::JSON::parse(juce::String(text), result).failed())
+        return {};
+    return result;
+}
+
+std::vector<std::string> lines(const std::string& text)
+{
+    std::vector<std::string> result;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);)
+        result.push_back(line);
+    return result;
+}
+
+} // namespace rendertest

@@ -1,0 +1,90 @@
+#pragma once
+// Helpers for the snaresim-render tests: running the binary with captured output, a
+// temporary directory per test, reading the WAV / CSV / JSON / PNG it writes.
+
+#include <juce_core/juce_core.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace rendertest
+{
+
+namespace fs = std::filesystem;
+
+struct RunResult
+{
+    int exitCode = -1;   // -1: did not exit normally
+    std::string out;
+    std::string err;
+};
+
+// A fresh directory, removed with everything in it at the end of the test. Tests put
+// inputs under in() and outputs under out(); the captured stdout/stderr live elsewhere.
+class TempDir
+{
+public:
+    TempDir();
+    ~TempDir();
+    TempDir(const TempDir&) = delete;
+    TempDir& operator=(const TempDir&) = delete;
+
+    const fs::path& root() const { return base; }
+    fs::path in() const { return base / "in"; }
+    fs::path out() const { return base / "out"; }
+
+private:
+    fs::path base;
+};
+
+// Runs snaresim-render with these arguments (no shell), capturing stdout and stderr.
+RunResult runRenderer(const std::vector<std::string>& args, const fs::path& captureDir);
+
+// The same in two halves: start it, then wait for it to end.
+int startRenderer(const std::vector<std::string>& args, const fs::path& captureDir); // the pid
+RunResult waitForRenderer(int pid, const fs::path& captureDir);
+
+// Names of the entries of a directory, sorted.
+std::vector<std::string> entries(const fs::path& directory);
+
+struct WavData
+{
+    bool opened = false;
+    double sampleRate = 0.0;
+    int channels = 0;
+    int bitsPerSample = 0;
+    bool floatingPoint = false;
+    long long length = 0;
+    std::vector<float> samples; // channel 0
+    std::vector<std::vector<float>> channelSamples; // every channel
+};
+
+WavData readWav(const fs::path& file);
+
+struct PngData
+{
+    bool loaded = false;      // juce::ImageFileFormat::loadFrom gave an image
+    bool pngSignature = false; // the file starts with the PNG signature
+    int width = 0;
+    int height = 0;
+};
+
+PngData readPng(const fs::path& file);
+
+// The number of distinct colours (ARGB) in a region of an image file (0 when it cannot be
+// loaded), counting at most `limit`.
+int distinctColours(const fs::path& file, int x, int y, int width, int height, int limit = 1000);
+
+// Largest |x| of a signal, and the RMS of the difference of two (equal lengths).
+float peakOf(const std::vector<float>& signal);
+double rmsDifference(const std::vector<float>& a, const std::vector<float>& b);
+
+std::string readText(const fs::path& file);
+
+juce::var parseJson(const std::string& text);
+
+// Every line of a text, without the line ends.
+std::vector<std::string> lines(const std::string& text);
+
+} // namespace rendertest
