@@ -1,0 +1,92 @@
+#!/usr/bin/env bash
+# Sets up a Debian 12 machine, builds SnareSim and either renders a demo strike or runs the tests.
+#
+#   bash scripts/bootstrap.sh demo   # build, then render out/demo.wav (prints its absolute path)
+#   bash scripts/bootstrap.sh test   # build everything, then run the whole test suite (ctest)
+#
+# Safe to rerun: packages are installed only when missing, and the build in build/ only redoes
+# what changed.
+set -euo pipefail
+
+usage() {
+    echo "usage: bash scripts/bootstrap.sh demo|test" >&2
+    exit 2
+}
+
+[ $# -eq 1 ] || usage
+mode=$1
+case "$mode" in
+    demo|test) ;;
+    *) usage ;;
+esac
+
+repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+cd "$repo"
+build_dir="$repo/build"
+jobs=$(nproc 2>/dev/null || echo 2)
+
+log() { printf '==> %s\n' "$*" >&2; }
+
+# --- 1. Debian packages ---------------------------------------------------------------------------
+packages=(
+    build-essential         # C/C++ compiler, make
+    cmake
+    pkg-config              # JUCE finds ALSA, freetype, libpng, libjpeg with it
+    juce-modules-source     # JUCE 7 modules + CMake support (pulls in the X11/ALSA/freetype -dev packages)
+    libeigen3-dev
+    catch2
+    lv2-dev
+    libjack-jackd2-dev      # JACK support in the standalone application
+)
+
+missing=()
+for pkg in "${packages[@]}"; do
+    if ! dpkg-query -W -f='${Status}\n' "$pkg" 2>/dev/null | grep -q '^install ok installed$'; then
+        missing+=("$pkg")
+    fi
+done
+
+if [ ${#missing[@]} -gt 0 ]; then
+    if [ "$(id -u)" -eq 0 ]; then
+        as_root=()
+    elif command -v sudo >/dev/null 2>&1; then
+        as_root=(sudo)
+    else
+        echo "error: missing packages (${missing[*]}) and not root, and sudo is not available." >&2
+        echo "       Install them as root:  apt-get install ${missing[*]}" >&2
+        exit 1
+    fi
+    log "installing: ${missing[*]}"
+    "${as_root[@]}" env DEBIAN_FRONTEND=noninteractive apt-get update
+    "${as_root[@]}" env DEBIAN_FRONTEND=noninteractive \
+        apt-get install -y --no-install-recommends "${missing[@]}"
+fi
+
+# --- 2. Configure (Release) -----------------------------------------------------------------------
+log "configuring $build_dir"
+cmake -S "$repo" -B "$build_dir" -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=ON >/dev/null
+
+# --- 3. Build and run -----------------------------------------------------------------------------
+case "$mode" in
+    demo)
+        log "building snaresim-render"
+        cmake --build "$build_dir" --target snaresim-render -j "$jobs"
+
+        renderer="$build_dir/Source/Renderer/snaresim-render"
+        if [ ! -x "$renderer" ]; then
+            renderer=$(find "$build_dir" -type f -name snaresim-render -perm -u+x -print -quit)
+        fi
+        [ -n "$renderer" ] && [ -x "$renderer" ] || { echo "error: snaresim-render was not built" >&2; exit 1; }
+
+        mkdir -p "$repo/out"
+        log "rendering a demo strike"
+        "$renderer" -o "$repo/out/demo.wav" --hit 0:100 --seconds 2
+        echo "$repo/out/demo.wav"
+        ;;
+    test)
+        log "building everything"
+        cmake --build "$build_dir" -j "$jobs"
+        log "running the tests"
+        ctest --test-dir "$build_dir" --output-on-failure
+        ;;
+esac
