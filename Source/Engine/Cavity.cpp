@@ -1,5 +1,6 @@
 #include "Cavity.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -18,6 +19,12 @@ double cavityStiffness(const CavitySpec& s, double radius, double depth)
 } // namespace
 
 Cavity::Cavity(const CavitySpec& spec, double radius) : K(cavityStiffness(spec, radius, spec.shellDepth_m)) {}
+
+void Cavity::setSpec(const CavitySpec& spec, double radius)
+{
+    const double depth = spec.gridShellDepth_m > 0.0 ? std::max(spec.shellDepth_m, spec.gridShellDepth_m) : spec.shellDepth_m;
+    K = cavityStiffness(spec, radius, depth);
+}
 
 double Cavity::kineticReserve(const CavitySpec& spec, double radius, double density, double k)
 {

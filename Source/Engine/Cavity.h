@@ -19,6 +19,9 @@ class Cavity
 public:
     Cavity(const CavitySpec& spec, double radius_m);
 
+    // Change the air model or the shell depth (not below the grid's design depth). Real-time safe.
+    void setSpec(const CavitySpec& spec, double radius_m);
+
     // K = rho_a c_a^2 / V0 (Pa/m^3); 0 without air.
     double stiffness() const { return K; }
     // Share of a head's kinetic energy the explicit coupling may need, for the grid of a head

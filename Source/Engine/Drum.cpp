@@ -77,6 +77,108 @@ void Drum::strike(double speed, double xFrac, double yFrac)
 
 void Drum::strikeAtDefaultPoint(double speed) { strike(speed, cfg.strikeRadius_frac, 0.0); }
 
+void Drum::playNote(int note, int velocity)
+{
+    const Articulation& a = articulationForNote(note);
+    switch (a.action)
+    {
+        case ArticulationAction::snaresOff: setSnaresEngaged(false); return;
+        case ArticulationAction::snaresOn: setSnaresEngaged(true); return;
+        case ArticulationAction::strike: break;
+    }
+    const double r = a.radius_frac < 0.0 ? cfg.strikeRadius_frac : a.radius_frac;
+    strike(a.speedScale * strikeSpeedFromVelocity(velocity, cfg.strikeSpeedMax_m_per_s), r * std::cos(a.angle_rad),
+           r * std::sin(a.angle_rad));
+}
+
+bool Drum::canApplyLive(const DrumConfig& n) const noexcept
+{
+    auto sameGrid = [](const MembraneSpec& a, const MembraneSpec& b) {
+        return a.radius_m == b.radius_m && a.density_kg_per_m2 == b.density_kg_per_m2
+            && a.gridTension_N_per_m == b.gridTension_N_per_m && a.gridSigma1_m2_per_s == b.gridSigma1_m2_per_s
+            && a.gridCoarseness == b.gridCoarseness && b.tension_N_per_m <= (b.gridTension_N_per_m > 0.0 ? b.gridTension_N_per_m : a.tension_N_per_m)
+            && b.sigma1_m2_per_s <= (b.gridSigma1_m2_per_s >= 0.0 ? b.gridSigma1_m2_per_s : a.sigma1_m2_per_s);
+    };
+    const SnareSpec& a = cfg.snares;
+    const SnareSpec& b = n.snares;
+    return n.sampleRate_Hz == cfg.sampleRate_Hz && sameGrid(cfg.batter, n.batter) && sameGrid(cfg.carry, n.carry)
+        && a.count == b.count && a.length_m == b.length_m && a.spacing_m == b.spacing_m
+        && a.linearDensity_kg_per_m == b.linearDensity_kg_per_m && a.gridTension_N == b.gridTension_N
+        && a.gridSigma1_m2_per_s == b.gridSigma1_m2_per_s && b.tension_N <= (a.gridTension_N > 0.0 ? a.gridTension_N : a.tension_N)
+        && n.cavity.gridShellDepth_m == cfg.cavity.gridShellDepth_m && n.numMallets == cfg.numMallets
+        && n.mallet.contactRadius_m <= 0.02;
+}
+
+void Drum::applyLive(const DrumConfig& n) noexcept
+{
+    if (! canApplyLive(n))
+        return;
+    batterHead.setCoefficients(n.batter.tension_N_per_m, n.batter.sigma0_per_s, n.batter.sigma1_m2_per_s);
+    carryHead.setCoefficients(n.carry.tension_N_per_m, n.carry.sigma0_per_s, n.carry.sigma1_m2_per_s);
+    wires.setCoefficients(n.snares.tension_N, n.snares.sigma0_per_s, n.snares.sigma1_m2_per_s);
+    snareCoupling.setLaw(n.snares.stiffness, n.snares.exponent);
+    air.setSpec(n.cavity, n.batter.radius_m);
+    for (auto& m : mallets)
+        m.setSpec(n.mallet); // a mallet in flight keeps its position; its patch changes at the next strike
+    const double R = n.batter.radius_m;
+    if (n.mics.topX_frac != cfg.mics.topX_frac || n.mics.topY_frac != cfg.mics.topY_frac)
+        batterHead.grid().makeDistribution(n.mics.topX_frac * R, n.mics.topY_frac * R, 0.0, topMic);
+    if (n.mics.bottomX_frac != cfg.mics.bottomX_frac || n.mics.bottomY_frac != cfg.mics.bottomY_frac)
+        carryHead.grid().makeDistribution(n.mics.bottomX_frac * R, n.mics.bottomY_frac * R, 0.0, bottomMic);
+    cfg = n;
+    setSnaresEngaged(n.snares.engaged);
+}
+
+void Drum::fillSnapshot(DrumSnapshot& out) const noexcept
+{
+    constexpr int P = DrumSnapshot::raster;
+    const double R = cfg.batter.radius_m;
+    float peak = 0.0f;
+    auto sampleHead = [&](const Membrane& head, std::array<float, P * P>& dst) {
+        const auto& grid = head.grid();
+        const auto& w = head.displacement();
+        for (int j = 0; j < P; ++j)
+            for (int i = 0; i < P; ++i)
+            {
+                const double x = ((i + 0.5) / P * 2.0 - 1.0) * R, y = ((j + 0.5) / P * 2.0 - 1.0) * R;
+                const int node = grid.nearestInterior(x, y);
+                const float v = node >= 0 ? (float) w[(size_t) node] : 0.0f;
+                dst[(size_t) (j * P + i)] = v;
+                out.onHead[(size_t) (j * P + i)] = node >= 0 ? 1 : 0;
+                peak = std::max(peak, std::abs(v));
+            }
+    };
+    sampleHead(batterHead, out.batter);
+    sampleHead(carryHead, out.carry);
+
+    constexpr int Q = DrumSnapshot::wirePoints;
+    out.numWires = std::min(wires.count(), DrumSnapshot::maxWires);
+    out.snaresEngaged = engaged;
+    const int M = wires.intervals();
+    out.wireLength_frac = (float) (M * wires.spacing() / (2.0 * R));
+    const auto& gaps = snareCoupling.gaps();
+    for (int i = 0; i < out.numWires; ++i)
+    {
+        out.wireY_frac[(size_t) i] = (float) (wires.wireY(i) / R);
+        for (int q = 0; q < Q; ++q)
+        {
+            const int l = (int) std::lround((double) q / (Q - 1) * M);
+            const size_t slot = (size_t) (i * Q + q);
+            out.wire[slot] = engaged ? (float) wires.uNow[(size_t) (i * (M + 1) + l)] : 0.0f;
+            // gaps are per interior node: wire i, node l at i * (M - 1) + l - 1
+            const bool interior = l > 0 && l < M;
+            out.touching[slot] = engaged && interior && gaps[(size_t) (i * (M - 1) + l - 1)] > 0.0 ? 1 : 0;
+        }
+    }
+    out.peakDisplacement = peak;
+    out.samplesRendered = samplesRendered;
+}
+
+bool Drum::isFinite() const
+{
+    return batterHead.isFinite() && carryHead.isFinite() && (! engaged || wires.isFinite()) && std::isfinite(signals.mix);
+}
+
 void Drum::setSnaresEngaged(bool on)
 {
     if (on == engaged)
@@ -142,6 +244,7 @@ double Drum::step()
                    + m.mixFar * m.farGain * signals.far_Pa);
 
     dVPrev = dVNow;
+    ++samplesRendered;
     batterHead.advance();
     carryHead.advance();
     if (engaged)
@@ -219,6 +322,7 @@ void Drum::reset()
     ledger = {};
     signals = {};
     dVPrev = 0.0;
+    samplesRendered = 0;
 }
 
 } // namespace snaresim

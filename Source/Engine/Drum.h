@@ -3,8 +3,10 @@
 // mallets with their contact, snare wires with their collisions and attached ends, and the
 // cavity between the heads. The only class the plugin and the renderer talk to.
 
+#include "Articulations.h"
 #include "Cavity.h"
 #include "DrumConfig.h"
+#include "DrumSnapshot.h"
 #include "EnergyLedger.h"
 #include "Mallet.h"
 #include "MalletContact.h"
@@ -58,6 +60,16 @@ public:
     void strike(double speed_m_per_s, double x_frac, double y_frac);
     void strikeAtDefaultPoint(double speed_m_per_s);
 
+    // Play a MIDI note with its articulation (Articulations.h): velocity 1..127 through the
+    // velocity curve, or snares off / on. Real-time safe.
+    void playNote(int midiNote, int velocity);
+
+    // Live changes: true when `next` differs from the running config only in what can change
+    // without a new grid (tensions, losses, mallet, positions, microphones, gains, air,
+    // snares on/off). applyLive then takes those values; real-time safe.
+    bool canApplyLive(const DrumConfig& next) const noexcept;
+    void applyLive(const DrumConfig& next) noexcept;
+
     // Snares on the carry head or thrown off. Real-time safe.
     void setSnaresEngaged(bool engaged);
     bool snaresEngaged() const { return engaged; }
@@ -88,6 +100,11 @@ public:
     const SnareContact& snareContact() const { return snareCoupling; }
     const Cavity& cavity() const { return air; }
     const Mallet& mallet(int i) const { return mallets[(size_t) i]; }
+    bool isFinite() const;
+
+    // Fill a display snapshot of the current state. Real-time safe (no allocation); costs
+    // about a thousand samples' worth of reads, so call it at screen rate, not per sample.
+    void fillSnapshot(DrumSnapshot& out) const noexcept;
     int numMallets() const { return (int) mallets.size(); }
 
 private:
@@ -113,6 +130,7 @@ private:
     bool engaged = true;
     int nextMallet = 0;
     double dVPrev = 0.0; // dV^{n-1}, for the far-field second difference
+    long long samplesRendered = 0;
 };
 
 } // namespace snaresim

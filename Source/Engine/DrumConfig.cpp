@@ -129,32 +129,35 @@ DrumConfig DrumConfig::lossless() const
     return c;
 }
 
-DrumConfig makeDrumConfig(const ParameterSet& p, double sampleRate_Hz)
+DrumConfig mapParameters(const ParameterSet& p, double sampleRate_Hz) noexcept
 {
     DrumConfig c;
     c.sampleRate_Hz = sampleRate_Hz;
+    // Damping d (0..100 %) sets the T60 of the heads' lowest modes: 4 s * (0.15 / 4)^(d / 100);
+    // sigma0 = 3 ln(10) / T60 (physics-notes section 2).
+    const double t60 = 4.0 * std::pow(0.15 / 4.0, p.get(ParamId::damping) / 100.0);
+    const double sigma0 = 3.0 * std::log(10.0) / t60;
+    const double sigma1 = p.get(ParamId::highDamping);
+    const double coarseness = p.get(ParamId::gridCoarseness);
+
     c.batter.tension_N_per_m = p.get(ParamId::batterTension);
-    c.batter.sigma0_per_s = 3.0 * std::log(10.0) / p.get(ParamId::batterDecay);
-    c.batter.sigma1_m2_per_s = p.get(ParamId::batterHighDamping);
-    // The grid is designed for the largest values the controls allow (physics-notes section 1),
-    // so moving them never needs a new grid.
+    c.batter.sigma0_per_s = sigma0;
+    c.batter.sigma1_m2_per_s = sigma1;
+    c.carry.tension_N_per_m = p.get(ParamId::carryFollows) >= 0.5
+                                ? std::clamp(p.get(ParamId::batterTension) * (2060.0 / 3050.0), spec(ParamId::carryTension).minValue,
+                                             spec(ParamId::carryTension).maxValue)
+                                : p.get(ParamId::carryTension);
+    c.carry.sigma0_per_s = sigma0;
+    c.carry.sigma1_m2_per_s = sigma1;
+    // Grids designed for the largest values the controls allow (physics-notes section 1).
+    for (MembraneSpec* m : { &c.batter, &c.carry })
+    {
+        m->gridSigma1_m2_per_s = spec(ParamId::highDamping).maxValue;
+        m->gridCoarseness = coarseness;
+    }
     c.batter.gridTension_N_per_m = spec(ParamId::batterTension).maxValue;
-    c.batter.gridSigma1_m2_per_s = spec(ParamId::batterHighDamping).maxValue;
-    c.batter.gridCoarseness = p.get(ParamId::gridCoarseness);
-    c.strikeSpeedMax_m_per_s = p.get(ParamId::strikeSpeedMax);
-    c.mallet.mass_kg = p.get(ParamId::malletMass);
-    c.mallet.stiffness = p.get(ParamId::malletStiffness);
-    c.mallet.exponent = p.get(ParamId::malletExponent);
-    c.mallet.contactRadius_m = p.get(ParamId::malletContactRadius);
-    c.strikeRadius_frac = p.get(ParamId::strikePosition);
-    const double listen = p.get(ParamId::listenPosition);
-    c.mics.topX_frac = listen * std::cos(0.6);
-    c.mics.topY_frac = listen * std::sin(0.6);
-    c.outputGain = std::pow(10.0, p.get(ParamId::outputGain) / 20.0);
-    c.carry.tension_N_per_m = p.get(ParamId::carryTension);
     c.carry.gridTension_N_per_m = spec(ParamId::carryTension).maxValue;
-    c.carry.gridSigma1_m2_per_s = spec(ParamId::batterHighDamping).maxValue;
-    c.carry.gridCoarseness = p.get(ParamId::gridCoarseness);
+
     c.snares.tension_N = p.get(ParamId::snareTension);
     c.snares.gridTension_N = spec(ParamId::snareTension).maxValue;
     c.snares.engaged = p.get(ParamId::snaresEngaged) >= 0.5;
@@ -162,6 +165,27 @@ DrumConfig makeDrumConfig(const ParameterSet& p, double sampleRate_Hz)
     c.cavity.shellDepth_m = p.get(ParamId::shellDepth);
     c.cavity.gridShellDepth_m = spec(ParamId::shellDepth).minValue;
     c.cavity.model = p.get(ParamId::airModel) >= 0.5 ? AirModel::cavity : AirModel::none;
+
+    c.strikeRadius_frac = p.get(ParamId::strikePosition);
+    c.strikeSpeedMax_m_per_s = p.get(ParamId::strikeSpeedMax);
+    c.mallet.mass_kg = p.get(ParamId::malletMass);
+    c.mallet.stiffness = p.get(ParamId::malletStiffness);
+    c.mallet.exponent = p.get(ParamId::malletExponent);
+    c.mallet.contactRadius_m = p.get(ParamId::malletContactRadius);
+
+    c.mics.mixTop = p.get(ParamId::micTop);
+    c.mics.mixBottom = p.get(ParamId::micBottom);
+    c.mics.mixFar = p.get(ParamId::micRoom);
+    const double top = p.get(ParamId::micTopPosition);
+    c.mics.topX_frac = top * std::cos(0.6);
+    c.mics.topY_frac = top * std::sin(0.6);
+    c.outputGain = std::pow(10.0, p.get(ParamId::outputGain) / 20.0);
+    return c;
+}
+
+DrumConfig makeDrumConfig(const ParameterSet& p, double sampleRate_Hz)
+{
+    DrumConfig c = mapParameters(p, sampleRate_Hz);
     c.validate();
     return c;
 }

@@ -105,8 +105,14 @@ struct DrumConfig
     SnareSpec fittedSnares() const;
 };
 
-// Map the user-facing parameters onto the physical description.
+// Map the user-facing parameters onto the physical description, validated (throws
+// std::invalid_argument when the model cannot run at this sample rate and quality).
 DrumConfig makeDrumConfig(const ParameterSet& params, double sampleRate_Hz);
+
+// The same mapping without validation and without allocating: for the audio thread, where
+// the values come from a ParameterSet (always in range) and only live-changeable fields are
+// taken from the result (Drum::applyLive).
+DrumConfig mapParameters(const ParameterSet& params, double sampleRate_Hz) noexcept;
 
 // Documented MIDI velocity curve: speed = maxSpeed * 10^(-1.6 (127 - v) / 126), v in 1..127,
 // so 127 -> maxSpeed and 1 -> maxSpeed / 40 (about 32 dB of strike speed).

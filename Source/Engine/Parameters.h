@@ -14,24 +14,34 @@ namespace snaresim
 
 enum class ParamId : std::size_t
 {
+    // the three controls of the brief
     batterTension,
-    batterDecay,
-    batterHighDamping,
+    snareTension,
+    damping,
+    // heads and shell
+    carryTension,
+    carryFollows,
+    highDamping,
+    shellDepth,
+    airModel,
+    // snares
+    snaresEngaged,
+    snareCount,
+    // mallet and playing
+    strikePosition,
     strikeSpeedMax,
     malletMass,
     malletStiffness,
     malletExponent,
     malletContactRadius,
-    strikePosition,
-    listenPosition,
-    gridCoarseness,
+    // microphones and output
+    micTop,
+    micBottom,
+    micRoom,
+    micTopPosition,
     outputGain,
-    carryTension,
-    snareTension,
-    snaresEngaged,
-    snareCount,
-    shellDepth,
-    airModel,
+    // model
+    gridCoarseness,
     count
 };
 
@@ -63,6 +73,7 @@ struct ParameterSpec
     std::string_view help;
     ParamKind kind = ParamKind::continuous;
     std::string_view choices = "";
+    std::string_view group = "";  // editor group: "main", "heads", "snares", "mallet", "output", "model"
 };
 
 inline constexpr std::size_t kNumParameters = static_cast<std::size_t>(ParamId::count);

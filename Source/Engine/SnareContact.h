@@ -45,7 +45,8 @@ public:
     double potentialEnergyBeforeStep() const; // at n-1/2
     double maxPenetration() const; // largest xi^{n+1} (m), 0 when apart
     int numPoints() const { return (int) pointWireNode.size(); }
-    const std::vector<double>& gaps() const { return xiNext; } // xi = u - w_c per contact point
+    // xi = u - w_c per contact point at the latest completed step (after Drum::step)
+    const std::vector<double>& gaps() const { return xiNow; }
 
     void advance();
     // Lay the wires on the carry head as it is at n and n-1 (snares engaged): every node
