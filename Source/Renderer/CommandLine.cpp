@@ -285,6 +285,8 @@ CommandLine parseCommandLine(const std::vector<std::string>& args)
             setOnce(job.energyPlot, parsePath(value(), option), option);
         else if (option == "--spectrogram")
             setOnce(job.spectrogram, parsePath(value(), option), option);
+        else if (option == "--snare-plot")
+            setOnce(job.snarePlot, parsePath(value(), option), option);
         else if (option == "--lossless")
             job.lossless = flag();
         else if (option == "--json")
@@ -366,6 +368,11 @@ Output:
   --spectrogram FILE    also write a PNG (1200 x 700): log-frequency spectrogram of the
                         WAV's signal (with --mic all: the mix), Hann window of 2048
                         samples at 48 kHz (scaled with the rate), 75 % overlap, 90 dB range
+  --snare-plot FILE     also write a PNG (1200 x 700) of the snare wires for the first
+                        25 ms after the first strike: top, the mean displacement of the
+                        wires' interior nodes, the band between their lowest and highest,
+                        and the carry head's mean displacement under them (mm); bottom,
+                        the number of wire points touching the carry head; time in ms
   --json                print one JSON object with the render statistics on stdout
                         (default: a short human-readable summary on stdout)
 

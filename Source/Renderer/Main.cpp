@@ -18,6 +18,7 @@
 #include "RenderPlan.h"
 #include "Renderer.h"
 #include "Report.h"
+#include "SnarePlot.h"
 #include "Spectrogram.h"
 #include "WavWriter.h"
 
@@ -65,6 +66,8 @@ std::vector<std::pair<std::string, fs::path>> outputsOf(const RenderJob& job)
         outputs.emplace_back("--energy-plot", *job.energyPlot);
     if (job.spectrogram)
         outputs.emplace_back("--spectrogram", *job.spectrogram);
+    if (job.snarePlot)
+        outputs.emplace_back("--snare-plot", *job.snarePlot);
     return outputs;
 }
 
@@ -151,6 +154,17 @@ int render(const RenderJob& job)
             plan.numSamples, plan.sampleRate_Hz, std::string(micName(mic == MicOutput::all ? MicOutput::mix : mic)));
     }
 
+    std::optional<AtomicFile> snarePlotFile;
+    std::unique_ptr<SnarePlot> snarePlot;
+    if (job.snarePlot)
+    {
+        snarePlotFile.emplace(*job.snarePlot);
+        snarePlot = std::make_unique<SnarePlot>(
+            *drum, plan.numSamples, plan.sampleRate_Hz,
+            plan.strikes.empty() ? std::nullopt : std::optional(plan.strikes.front().sample));
+        snarePlot->add(0, *drum); // the state before the first step (time 0), when in the window
+    }
+
     RenderSinks sinks;
     std::vector<const float*> channelPointers(mics.size());
     sinks.audio = [&](std::span<const std::span<const float>> channels) {
@@ -169,6 +183,14 @@ int render(const RenderJob& job)
                 energyPlot->add(first, rows);
         };
 
+    if (snarePlot)
+    {
+        // The step of sample n gives the state at time n + 1.
+        sinks.state = [&](std::int64_t sample, const Drum& state) { snarePlot->add(sample + 1, state); };
+        sinks.stateFrom = std::max<std::int64_t>(snarePlot->firstTime() - 1, 0);
+        sinks.stateTo = snarePlot->lastTime();
+    }
+
     const bool trackEnergy = job.lossless || job.energyCsv || job.energyPlot;
     const auto stats = renderDrum(*drum, plan, mics, trackEnergy, sinks);
 
@@ -185,10 +207,15 @@ int render(const RenderJob& job)
         throwIfInterrupted();
         plot::writePng(spectrogram->draw(), *spectrogramFile);
     }
+    if (snarePlot)
+    {
+        throwIfInterrupted();
+        plot::writePng(snarePlot->draw(), *snarePlotFile);
+    }
     throwIfInterrupted();
 
     std::vector<AtomicFile*> files { &wavFile };
-    for (auto* file : { &csvFile, &energyPlotFile, &spectrogramFile })
+    for (auto* file : { &csvFile, &energyPlotFile, &spectrogramFile, &snarePlotFile })
         if (*file)
             files.push_back(&**file);
     commitAll(files);
@@ -199,7 +226,8 @@ int render(const RenderJob& job)
                                 fs::absolute(job.output).lexically_normal(),
                                 absolutePath(job.energyCsv),
                                 absolutePath(job.energyPlot),
-                                absolutePath(job.spectrogram) };
+                                absolutePath(job.spectrogram),
+                                absolutePath(job.snarePlot) };
     std::cout << (job.json ? formatJson(report) : formatSummary(report)) << std::flush;
     return 0;
 }

@@ -50,6 +50,7 @@ struct RenderJob
     std::optional<std::filesystem::path> energyCsv; // --energy-csv
     std::optional<std::filesystem::path> energyPlot; // --energy-plot (PNG)
     std::optional<std::filesystem::path> spectrogram; // --spectrogram (PNG)
+    std::optional<std::filesystem::path> snarePlot; // --snare-plot (PNG)
     std::optional<std::filesystem::path> midiFile;  // --midi
     std::vector<Strike> hits;                       // --hit, in command-line order
     std::optional<double> seconds;                  // --seconds

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <utility>
 #include <vector>
 
 namespace snaresim::render
@@ -102,6 +103,16 @@ RenderStats renderDrum(Drum& drum, const RenderPlan& plan, std::span<const Mic> 
 
     Statistics statistics;
     Clock::duration engineTime {};
+    Clock::duration stateTime {}; // spent in sinks.state, inside the timed section
+
+    // Hands the drum after the step of this sample to sinks.state when the sample is in range.
+    auto readState = [&](std::int64_t sample) {
+        if (! sinks.state || sample < sinks.stateFrom || sample >= sinks.stateTo)
+            return;
+        const auto start = Clock::now();
+        sinks.state(sample, std::as_const(drum));
+        stateTime += Clock::now() - start;
+    };
 
     for (std::int64_t position = 0; position < plan.numSamples;)
     {
@@ -113,6 +124,7 @@ RenderStats renderDrum(Drum& drum, const RenderPlan& plan, std::span<const Mic> 
         {
             strikeAt(position + i);
             const double mix = drum.step();
+            readState(position + i);
             for (std::size_t c = 0; c < numChannels; ++c)
                 blocks[c][(std::size_t) i] = (float) (mics[c] == Mic::mix ? mix : drum.output(mics[c]));
             if (trackEnergy)
@@ -140,7 +152,7 @@ RenderStats renderDrum(Drum& drum, const RenderPlan& plan, std::span<const Mic> 
     RenderStats stats;
     stats.samples = plan.numSamples;
     stats.channels = (int) numChannels;
-    stats.wallSeconds = std::chrono::duration<double>(engineTime).count();
+    stats.wallSeconds = std::chrono::duration<double>(engineTime - stateTime).count();
     stats.peak = statistics.peak;
     stats.rms = statistics.finite > 0 ? std::sqrt(statistics.sumSquares / (double) statistics.finite) : 0.0;
     stats.nonfiniteSamples = statistics.nonfinite;

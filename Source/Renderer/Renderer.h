@@ -1,7 +1,8 @@
 #pragma once
 // The render loop: plays a RenderPlan on a snaresim::Drum, strikes at their exact samples,
 // and hands the audio of the asked microphones (and, with energy tracking, the energy
-// ledger of every sample) to the callers' sinks. Measures the time spent in the engine only.
+// ledger of every sample; on request, the drum itself after the steps of a range of samples)
+// to the callers' sinks. Measures the time spent in the engine only.
 
 #include "RenderPlan.h"
 
@@ -37,6 +38,10 @@ struct RenderSinks
     std::function<void(std::span<const std::span<const float>> channels)> audio;
     // Called only with energy tracking; rows[i] is the ledger after sample firstSample + i.
     std::function<void(std::int64_t firstSample, std::span<const EnergyLedger> rows)> energy;
+    // Called right after the step of every sample in [stateFrom, stateTo) with the drum,
+    // whose state is then at time sample + 1 (read only; not counted as engine time).
+    std::function<void(std::int64_t sample, const Drum& drum)> state;
+    std::int64_t stateFrom = 0, stateTo = 0;
 };
 
 // mics: the signals to render, one channel each (drum.output(mic) after every step).

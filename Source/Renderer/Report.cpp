@@ -57,6 +57,7 @@ std::string formatJson(const RenderReport& r)
     object->setProperty("energy_csv", pathOrNull(r.energyCsv));
     object->setProperty("energy_plot", pathOrNull(r.energyPlot));
     object->setProperty("spectrogram", pathOrNull(r.spectrogram));
+    object->setProperty("snare_plot", pathOrNull(r.snarePlot));
     object->setProperty("sample_rate", (juce::int64) std::llround(r.plan.sampleRate_Hz)); // a whole number of Hz
     object->setProperty("channels", r.stats.channels);
     object->setProperty("mic", text(std::string(micName(r.job.selectedMic()))));
@@ -94,6 +95,8 @@ std::string formatSummary(const RenderReport& r)
         s += "wrote " + r.energyPlot->string() + " (energy plot)\n";
     if (r.spectrogram)
         s += "wrote " + r.spectrogram->string() + " (spectrogram)\n";
+    if (r.snarePlot)
+        s += "wrote " + r.snarePlot->string() + " (snare plot)\n";
     s += formatted("strikes: %d", r.stats.strikes);
     if (r.plan.strikesOutside > 0)
         s += formatted(" (%d more at or after the end, not played)", r.plan.strikesOutside);

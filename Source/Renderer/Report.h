@@ -22,6 +22,7 @@ struct RenderReport
     std::optional<std::filesystem::path> energyCsv; // absolute
     std::optional<std::filesystem::path> energyPlot; // absolute
     std::optional<std::filesystem::path> spectrogram; // absolute
+    std::optional<std::filesystem::path> snarePlot; // absolute
 };
 
 // One line, ends with a newline. Non-finite numbers are written as null.

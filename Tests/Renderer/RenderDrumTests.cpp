@@ -1,5 +1,6 @@
 // snaresim-render and the whole drum: --model (the air cavity), --mic (the microphones),
-// the snare controls through --set, and the PNG outputs (--energy-plot, --spectrogram).
+// the snare controls through --set, and the PNG outputs (--energy-plot, --spectrogram,
+// --snare-plot).
 // Renders are short (0.3 s) and coarse (grid_coarseness=2) where detail does not matter.
 
 #include "RendererTestSupport.h"
@@ -214,5 +215,73 @@ TEST_CASE("plots: --energy-plot and --spectrogram write PNG images", "[renderer]
         CHECK(spectrogram.height == 700);
         CHECK(distinctColours(spectrum, 200, 100, 800, 500) > 10);
         CHECK(entries(dir.out()) == std::vector<std::string> { "drum.wav", "energy.png", "spectrum.png" });
+    }
+}
+
+TEST_CASE("plots: --snare-plot writes a PNG of the snare wires", "[renderer]")
+{
+    TempDir dir;
+    const auto wav = dir.out() / "drum.wav";
+    const auto snares = dir.out() / "snares.png";
+
+    // The PNG is 1200 x 700; inside the top panel (wires and carry head) and the bottom one
+    // (contact count), more than white and grid.
+    auto checkImage = [&](int topColours, int bottomColours) {
+        const auto png = readPng(snares);
+        CHECK(png.pngSignature);
+        REQUIRE(png.loaded);
+        CHECK(png.width == 1200);
+        CHECK(png.height == 700);
+        CHECK(distinctColours(snares, 0, 0, png.width, png.height) > 1);
+        CHECK(distinctColours(snares, 130, 70, 750, 300) > topColours);
+        CHECK(distinctColours(snares, 130, 490, 750, 120) > bottomColours);
+    };
+
+    SECTION("after a strike, with the other outputs")
+    {
+        const auto energy = dir.out() / "energy.png";
+        const auto run = runRenderer(with({ "-o", wav.string(), "--snare-plot", snares.string(), "--energy-plot",
+                                            energy.string(), "--json" },
+                                          kQuick),
+                                     dir.root() / "capture");
+        INFO("stderr: " << run.err);
+        REQUIRE(run.exitCode == 0);
+        const auto json = parseJson(run.out);
+        REQUIRE(json.isObject());
+        CHECK(json["snare_plot"].toString().toStdString() == fs::absolute(snares).string());
+        checkImage(50, 5);
+        CHECK(entries(dir.out()) == std::vector<std::string> { "drum.wav", "energy.png", "snares.png" });
+    }
+
+    SECTION("a render shorter than 25 ms after a late strike, lossless, at 44.1 kHz")
+    {
+        const auto run = runRenderer({ "-o", wav.string(), "--hit", "0.012:127", "--seconds", "0.02", "--lossless",
+                                       "--sample-rate", "44100", "--snare-plot", snares.string() },
+                                     dir.root() / "capture");
+        INFO("stderr: " << run.err);
+        REQUIRE(run.exitCode == 0);
+        CHECK(run.out.find("(snare plot)") != std::string::npos);
+        checkImage(20, 2);
+        CHECK(entries(dir.out()) == std::vector<std::string> { "drum.wav", "snares.png" });
+    }
+
+    SECTION("snares thrown off: the carry head alone")
+    {
+        renderOk(dir, wav, with(kQuick, { "--set", "snares_engaged=0", "--snare-plot", snares.string() }));
+        checkImage(10, 1);
+    }
+
+    SECTION("no strike inside the render")
+    {
+        const auto run = runRenderer({ "-o", wav.string(), "--hit", "0.5:100", "--seconds", "0.01", "--set",
+                                       "grid_coarseness=2", "--snare-plot", snares.string(), "--json" },
+                                     dir.root() / "capture");
+        INFO("stderr: " << run.err);
+        REQUIRE(run.exitCode == 0);
+        CHECK(number(parseJson(run.out), "strikes") == 0.0);
+        const auto png = readPng(snares);
+        REQUIRE(png.loaded);
+        CHECK(png.width == 1200);
+        CHECK(distinctColours(snares, 0, 0, png.width, png.height) > 1);
     }
 }

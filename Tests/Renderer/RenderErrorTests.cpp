@@ -58,6 +58,12 @@ TEST_CASE("bad input: unknown options, stray arguments and missing values", "[re
     requireRejected(dir, { "--hit", "0:100", "--json=yes" }, "--json");
     requireRejected(dir, { "--hit", "0:100", "--seconds", "1", "--seconds", "2" }, "--seconds");
     requireRejected(dir, { "--hit", "0:100", "-o" }, "-o", false);
+    requireRejected(dir, { "--hit", "0:100", "--snare-plot" }, "--snare-plot");
+    requireRejected(dir, { "--hit", "0:100", "--snare-plot", "--json" }, "--snare-plot");
+    requireRejected(dir, { "--hit", "0:100", "--snare-plot", "" }, "empty file name");
+    requireRejected(dir, { "--hit", "0:100", "--snare-plot", (dir.out() / "a.png").string(), "--snare-plot",
+                           (dir.out() / "b.png").string() },
+                    "more than once");
 }
 
 TEST_CASE("bad input: missing -o, or nothing to play", "[renderer][errors]")
@@ -189,10 +195,26 @@ TEST_CASE("bad input: unwritable outputs fail before rendering and leave nothing
     fs::create_directory(dir.out() / "sub.png");
     requireRejected(dir, { "--hit", "0:100", "--energy-plot", energy, "--spectrogram", (dir.out() / "sub.png").string() },
                     "directory");
+    requireRejected(dir, { "--hit", "0:100", "--energy-plot", energy, "--snare-plot", (dir.out() / "sub.png").string() },
+                    "directory");
     fs::remove(dir.out() / "sub.png");
     requireRejected(dir, { "--hit", "0:100", "--energy-plot", (dir.out() / "out.wav").string() }, "same file");
     requireRejected(dir, { "--hit", "0:100", "--spectrogram", energy, "--energy-plot", energy }, "same file");
     requireRejected(dir, { "--hit", "0:100", "--energy-csv", spectrum, "--spectrogram", spectrum }, "same file");
+
+    // --snare-plot: the same rules.
+    const auto snares = (dir.out() / "w.png").string();
+    requireRejected(dir, { "--hit", "0:100", "--energy-plot", energy, "--spectrogram", spectrum, "--snare-plot",
+                           (dir.out() / "nowhere" / "w.png").string() },
+                    "does not exist");
+    requireRejected(dir, { "--hit", "0:100", "--snare-plot", snares, "--energy-plot",
+                           (dir.out() / "nowhere" / "e.png").string() },
+                    "does not exist");
+    requireRejected(dir, { "--hit", "0:100", "--snare-plot", (dir.out() / "out.wav").string() }, "same file");
+    requireRejected(dir, { "--hit", "0:100", "--spectrogram", snares, "--snare-plot", snares }, "same file");
+    requireRejected(dir, { "--hit", "0:100", "--snare-plot", (dir.out() / "." / "e.png").string(), "--energy-plot",
+                           energy },
+                    "same file");
 
     // A directory without write permission (skipped when running as root).
     const auto locked = dir.root() / "locked";

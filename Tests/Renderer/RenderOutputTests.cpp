@@ -153,7 +153,7 @@ TEST_CASE("json: --json prints one JSON object with the render statistics", "[re
     CHECK(! json.hasProperty("energy_relative_drift_max"));
     CHECK(number(json, "channels") == 1.0);
     CHECK(json["mic"].toString() == "mix");
-    for (const char* key : { "energy_csv", "energy_plot", "spectrogram" })
+    for (const char* key : { "energy_csv", "energy_plot", "spectrogram", "snare_plot" })
     {
         INFO("key " << key);
         CHECK(json.hasProperty(key));
