@@ -15,6 +15,7 @@ double solveCollision(const PowerLawPotential& phi, double gamma, double a, doub
     if (psiHi == 0.0)
         return hi;
     double lo = hi - gamma * psiHi;
+    const double phiA = phi.phi(a);
     const double scale = std::abs(a) + std::abs(b) + std::abs(lo);
     // Start from the guess (the last step's root) when it lies in the bracket.
     double r = std::isfinite(guess) ? std::clamp(guess, lo, hi) : hi;
@@ -22,14 +23,15 @@ double solveCollision(const PowerLawPotential& phi, double gamma, double a, doub
     for (int it = 0; it < 200; ++it)
     {
         ++iterations;
-        const double F = r + gamma * phi.psi(r, a) + b;
+        const auto sec = phi.secant(r, a, phiA);
+        const double F = r + gamma * sec.psi + b;
         if (F > 0.0)
             hi = r;
         else if (F < 0.0)
             lo = r;
         else
             return r;
-        const double dF = 1.0 + gamma * phi.dpsi(r, a);
+        const double dF = 1.0 + gamma * sec.dpsi;
         double next = r - F / dF;
         if (! (next >= lo && next <= hi)) // Newton left the bracket: bisect
             next = 0.5 * (lo + hi);

@@ -45,6 +45,41 @@ struct PowerLawPotential
         return (phi(a + r) - phi(a)) / r;
     }
 
+    // psi and d psi / d r together, with Phi(a) given: one power evaluation (Newton's inner loop).
+    struct Secant
+    {
+        double psi, dpsi;
+    };
+    Secant secant(double r, double a, double phiA) const
+    {
+        if (a <= 0.0 && a + r <= 0.0)
+            return { 0.0, 0.0 };
+        const double absA = std::abs(a);
+        if (std::abs(r) <= smallStep * absA)
+        {
+            const double m = a + 0.5 * r;
+            if (m <= 0.0)
+                return { 0.0, 0.0 };
+            const double pm = power(m);
+            return { kappa * pm, 0.5 * kappa * alpha * pm / m };
+        }
+        const double x = a + r;
+        double phiX = 0.0, dphiX = 0.0;
+        if (x > 0.0)
+        {
+            const double px = power(x);
+            dphiX = kappa * px;
+            phiX = dphiX * x / (alpha + 1.0);
+        }
+        const double p = (phiX - phiA) / r;
+        if (std::abs(r) <= 1.0e-4 * absA)
+        {
+            const double m = a + 0.5 * r;
+            return { p, m > 0.0 ? 0.5 * kappa * alpha * power(m) / m : 0.0 };
+        }
+        return { p, (dphiX - p) / r };
+    }
+
     // d psi / d r
     double dpsi(double r, double a) const
     {

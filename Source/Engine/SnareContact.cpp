@@ -53,7 +53,7 @@ SnareContact::SnareContact(const SnareSpec& spec, const SnareWires& wires, const
     xiNext.assign(pointWireNode.size(), 0.0);
     xiNow = xiNext;
     xiPrev = xiNext;
-    for (auto* v : { &a, &b, &r, &psi, &dpsi })
+    for (auto* v : { &a, &b, &r, &psi, &dpsi, &phiA })
         v->assign(largest, 0.0);
     active.assign(largest, 0);
 }
@@ -108,6 +108,7 @@ void SnareContact::solveGroup(int g, Membrane& carry, SnareWires& wires, SnareSo
         {
             active[(size_t) m] = id;
             a[(size_t) m] = aPrev;
+            phiA[(size_t) m] = law.phi(aPrev);
             b[(size_t) m] = aPrev - xiFree;
             ++m;
         }
@@ -173,8 +174,9 @@ bool SnareContact::solveGroupNewton(int m, double gammaS, double coupling, int& 
         double sumPsi = 0.0;
         for (int i = 0; i < m; ++i)
         {
-            psi[(size_t) i] = law.psi(r[(size_t) i], a[(size_t) i]);
-            dpsi[(size_t) i] = law.dpsi(r[(size_t) i], a[(size_t) i]);
+            const auto sec = law.secant(r[(size_t) i], a[(size_t) i], phiA[(size_t) i]);
+            psi[(size_t) i] = sec.psi;
+            dpsi[(size_t) i] = sec.dpsi;
             sumPsi += psi[(size_t) i];
         }
         double vy = 0.0, vz = 0.0;

@@ -72,7 +72,7 @@ private:
     std::vector<double> rLast; // last step's root per point (NaN when it was not solved): Newton's start
     // per-group scratch (sized for the largest group)
     std::vector<int> active;
-    std::vector<double> a, b, r, psi, dpsi;
+    std::vector<double> a, b, r, psi, dpsi, phiA;
 };
 
 } // namespace snaresim
