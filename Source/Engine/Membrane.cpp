@@ -3,6 +3,12 @@
 #include <algorithm>
 #include <cmath>
 
+#if defined(__x86_64__) && defined(__GNUC__) && ! defined(__clang__)
+#define SNARESIM_VECTOR_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
+#else
+#define SNARESIM_VECTOR_CLONES
+#endif
+
 namespace snaresim
 {
 
@@ -60,7 +66,8 @@ void Membrane::setCoefficients(double tension, double s0, double s1)
     b1 = -s / q;
 }
 
-void Membrane::computeFree(double pressure)
+// Built for AVX2+FMA and for baseline x86-64; the loader picks the one the CPU runs.
+SNARESIM_VECTOR_CLONES void Membrane::computeFree(double pressure)
 {
     const int n = g.width();
     const double* __restrict w = wNow.data();

@@ -67,8 +67,35 @@ void SnareContact::setLaw(double stiffness, double exponent)
 SnareSolveResult SnareContact::step(Membrane& carry, SnareWires& wires)
 {
     SnareSolveResult result;
+    const double* u = wires.uNext.data();
+    const double nan = std::numeric_limits<double>::quiet_NaN();
     for (int g = 0; g < (int) groupNode.size(); ++g)
+    {
+        const int p0 = groupPointBegin[(size_t) g], p1 = groupPointBegin[(size_t) g + 1];
+        if (groupEndBegin[(size_t) g] == groupEndBegin[(size_t) g + 1])
+        {
+            // Fast path for a node without wire ends where no point can touch: the free
+            // update stands and the gaps follow from it.
+            const double W = carry.nextAt(groupNode[(size_t) g]);
+            bool touching = false;
+            for (int p = p0; p < p1 && ! touching; ++p)
+            {
+                const int id = groupPoints[(size_t) p];
+                touching = xiPrev[(size_t) id] > 0.0 || u[pointWireNode[(size_t) id]] - W > 0.0;
+            }
+            if (! touching)
+            {
+                for (int p = p0; p < p1; ++p)
+                {
+                    const int id = groupPoints[(size_t) p];
+                    xiNext[(size_t) id] = u[pointWireNode[(size_t) id]] - W;
+                    rLast[(size_t) id] = nan;
+                }
+                continue;
+            }
+        }
         solveGroup(g, carry, wires, result);
+    }
     return result;
 }
 
