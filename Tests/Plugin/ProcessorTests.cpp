@@ -243,7 +243,7 @@ TEST_CASE ("state save and restore round-trips every parameter exactly", "[proce
         CHECK ((float) engineParams.get (spec.id) == raw->load());
     }
 
-    // The restored parameters take effect at the next prepareToPlay.
+    // The restored parameters play (the grid ones from the next prepareToPlay or model build).
     prepare (fresh, 48000.0, 256);
     CHECK (fresh.getDrum() != nullptr);
     const auto stats = render (fresh, 256, 4800, 0);
@@ -270,7 +270,7 @@ TEST_CASE ("garbage or foreign state is ignored", "[processor][state]")
     CHECK (p->getValue() == before);
 }
 
-TEST_CASE ("the plug-in factory creates the processor with a generic editor", "[processor]")
+TEST_CASE ("the plug-in factory creates the processor, which has an editor", "[processor]")
 {
     std::unique_ptr<juce::AudioProcessor> proc (createPluginFilter());
     REQUIRE (proc != nullptr);

@@ -1,0 +1,537 @@
+// The processor's live behaviour, in-process: MIDI handling, live parameters, background
+// model swaps, programs, old states, the editor's feeds (snapshots, meters), the output guard
+// and threads.
+
+#include <catch2/catch.hpp>
+
+#include "ProcessorTestHelpers.h"
+#include "Drum.h"
+#include "Presets.h"
+
+#include <atomic>
+#include <chrono>
+#include <limits>
+#include <random>
+#include <thread>
+
+using namespace snaresim::testing;
+using snaresim::ParamId;
+
+namespace
+{
+// Processes silent blocks (letting the background thread work) until the processor has
+// installed `swaps` models in all, or the time is up.
+bool waitForModelSwaps (SnareSimAudioProcessor& proc, int swaps, int blockSize = 256, double timeoutSeconds = 30.0)
+{
+    const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double> (timeoutSeconds);
+    while (proc.getModelSwapCount() < swaps)
+    {
+        if (std::chrono::steady_clock::now() > until)
+            return false;
+        render (proc, blockSize, blockSize);
+        std::this_thread::sleep_for (std::chrono::milliseconds (2));
+    }
+    return true;
+}
+
+// A bit more than the crossfade.
+constexpr int fadeSamples = 2048;
+} // namespace
+
+TEST_CASE ("a note inside a block starts on its own sample", "[processor][midi]")
+{
+    // The same note at absolute sample 300, rendered in blocks of 64 and of 1000: identical.
+    auto renderWith = [] (int blockSize)
+    {
+        SnareSimAudioProcessor proc;
+        fastSettings (proc);
+        prepare (proc, 48000.0, blockSize);
+        return render (proc, blockSize, 3000, { { 300, note (100) } });
+    };
+
+    const auto a = renderWith (64);
+    const auto b = renderWith (1000);
+    REQUIRE (a.samples.size() == b.samples.size());
+    CHECK (a.samples == b.samples);
+    CHECK (a.peakFrom (0) > 1.0e-4f);
+    for (int i = 0; i < 300; ++i)
+        REQUIRE (a.samples[(size_t) i] == 0.0f);
+    CHECK (a.peakFrom (300) > 0.0f);
+}
+
+TEST_CASE ("note-offs and all-notes-off leave the drum ringing; all-sound-off silences it", "[processor][midi]")
+{
+    auto renderWith = [] (std::vector<Event> extra)
+    {
+        SnareSimAudioProcessor proc;
+        fastSettings (proc);
+        prepare (proc, 48000.0, 256);
+        extra.push_back ({ 0, note (110) });
+        return render (proc, 256, 4800, extra);
+    };
+
+    const auto plain = renderWith ({});
+    const auto offs = renderWith ({ { 100, juce::MidiMessage::noteOff (10, 38) },
+                                    { 500, juce::MidiMessage::allNotesOff (10) },
+                                    { 700, juce::MidiMessage::controllerEvent (10, 121, 0) } });
+    CHECK (offs.samples == plain.samples);
+
+    const auto silenced = renderWith ({ { 1000, juce::MidiMessage::allSoundOff (10) } });
+    CHECK (silenced.peak > 1.0e-4f);
+    CHECK (silenced.peakFrom (1000) == 0.0f);
+
+    // A note after all-sound-off plays again.
+    const auto again = renderWith ({ { 1000, juce::MidiMessage::allSoundOff (10) }, { 2000, note (100) } });
+    CHECK (again.peakFrom (2000) > 1.0e-4f);
+}
+
+TEST_CASE ("notes never reset the drum: a roll builds on the ringing head", "[processor][midi]")
+{
+    SnareSimAudioProcessor proc;
+    fastSettings (proc);
+    prepare (proc, 48000.0, 256);
+    const auto single = render (proc, 256, 4800, { { 0, note (100) } });
+
+    SnareSimAudioProcessor rollProc;
+    fastSettings (rollProc);
+    prepare (rollProc, 48000.0, 256);
+    // Five strikes 10 ms apart, more than the four mallets.
+    const auto roll = render (rollProc, 256, 4800, { { 0, note (100) }, { 480, note (100) }, { 960, note (100) },
+                                                     { 1440, note (100) }, { 1920, note (100) } });
+    CHECK (roll.allFinite);
+    // Until the second strike the roll is the single note.
+    for (int i = 0; i < 480; ++i)
+        REQUIRE (roll.samples[(size_t) i] == single.samples[(size_t) i]);
+    CHECK (rms (roll.samples, 480) > rms (single.samples, 480));
+}
+
+TEST_CASE ("continuous parameters apply live and smoothly while the drum rings", "[processor][live]")
+{
+    SnareSimAudioProcessor proc;
+    fastSettings (proc);
+    prepare (proc, 48000.0, 256);
+    const int swaps = proc.getModelSwapCount();
+
+    render (proc, 256, 2400, { { 0, note (110) } });
+    const double sigma0Before = proc.getDrum()->config().batter.sigma0_per_s;
+    const double tensionBefore = proc.getDrum()->config().batter.tension_N_per_m;
+
+    set (proc, ParamId::damping, 80.0);
+    set (proc, ParamId::batterTension, 5000.0);
+
+    // Half way through the 30 ms ramp the values are between; after it, at the targets.
+    render (proc, 32, 480);
+    const double sigma0Mid = proc.getDrum()->config().batter.sigma0_per_s;
+    CHECK (sigma0Mid > sigma0Before);
+
+    render (proc, 256, 2048);
+    const auto target = snaresim::mapParameters (proc.currentParameters(), 48000.0);
+    CHECK (proc.getDrum()->config().batter.sigma0_per_s == Approx (target.batter.sigma0_per_s));
+    CHECK (sigma0Mid < target.batter.sigma0_per_s);
+    CHECK (proc.getDrum()->config().batter.tension_N_per_m == Approx (5000.0));
+    CHECK (proc.getDrum()->config().batter.tension_N_per_m != tensionBefore);
+
+    // No new model was needed.
+    CHECK (proc.getModelSwapCount() == swaps);
+
+    // Toggles apply at once.
+    set (proc, ParamId::airModel, 0.0);
+    set (proc, ParamId::carryFollows, 1.0);
+    render (proc, 256, 256);
+    CHECK (proc.getDrum()->config().cavity.model == snaresim::AirModel::none);
+    CHECK (proc.getDrum()->config().carry.tension_N_per_m == Approx (std::clamp (5000.0 * 2060.0 / 3050.0, 800.0, 5000.0)));
+}
+
+TEST_CASE ("damping raised while ringing shortens the ring", "[processor][live]")
+{
+    auto tail = [] (bool muffle)
+    {
+        SnareSimAudioProcessor proc;
+        fastSettings (proc);
+        prepare (proc, 48000.0, 256);
+        const auto r = render (proc, 256, 24000, { { 0, note (110) } },
+                               [&] (int start) { if (muffle && start == 4864) set (proc, ParamId::damping, 100.0); });
+        return rms (r.samples, 16000, 24000);
+    };
+
+    CHECK (tail (true) < 0.5 * tail (false));
+}
+
+TEST_CASE ("snare_count and grid_coarseness rebuild the model in the background and crossfade", "[processor][model]")
+{
+    SnareSimAudioProcessor proc;
+    fastSettings (proc);
+    prepare (proc, 48000.0, 256);
+    const int swaps = proc.getModelSwapCount();
+    REQUIRE (proc.getDrum()->config().snares.count == 5);
+
+    const auto strike = render (proc, 256, 2400, { { 0, note (110) } });
+
+    set (proc, ParamId::snareCount, 8.0);
+    set (proc, ParamId::gridCoarseness, 2.5);
+    std::vector<float> during;
+    const auto until = std::chrono::steady_clock::now() + std::chrono::seconds (30);
+    while (proc.getModelSwapCount() == swaps && std::chrono::steady_clock::now() < until)
+    {
+        const auto r = render (proc, 256, 256);
+        during.insert (during.end(), r.samples.begin(), r.samples.end());
+        std::this_thread::sleep_for (std::chrono::milliseconds (2));
+    }
+    REQUIRE (proc.getModelSwapCount() == swaps + 1);
+
+    const auto fade = render (proc, 32, fadeSamples);
+    CHECK (fade.allFinite);
+    // The old drum fades out over ~20 ms: no jump larger than the strike made, from the ring
+    // before the change through the crossfade.
+    during.insert (during.end(), fade.samples.begin(), fade.samples.end());
+    float maxStep = 0.0f;
+    for (size_t i = 1; i < during.size(); ++i)
+        maxStep = std::max (maxStep, std::abs (during[i] - during[i - 1]));
+    CHECK (maxStep <= strike.maxStep);
+    CHECK (rms (during, 0, 256) > 1.0e-4);     // it was ringing when the new model came
+    CHECK (proc.getDrum()->config().snares.count == 8);
+    CHECK (proc.getDrum()->config().batter.gridCoarseness == Approx (2.5));
+    CHECK_FALSE (proc.usedFallbackParameters());
+
+    // The new model plays.
+    const auto after = render (proc, 256, 4800, { { 0, note (110) } });
+    CHECK (after.allFinite);
+    CHECK (after.peak > 1.0e-4f);
+    CHECK (proc.getModelSwapCount() == swaps + 1);
+}
+
+TEST_CASE ("a new sample rate in prepareToPlay rebuilds the drum at that rate", "[processor][model]")
+{
+    SnareSimAudioProcessor proc;
+    fastSettings (proc);
+    for (const double rate : { 22050.0, 44100.0, 48000.0, 96000.0, 192000.0, 48000.0 })
+    {
+        INFO ("sample rate " << rate);
+        prepare (proc, rate, 512);
+        REQUIRE (proc.getDrum() != nullptr);
+        CHECK (proc.getDrum()->sampleRate() == rate);
+        const auto r = render (proc, 512, (int) (rate * 0.03), { { 5, note (100) } });
+        CHECK (r.allFinite);
+        CHECK_FALSE (r.anySubnormal);
+        CHECK (r.peak > 1.0e-5f);
+    }
+
+    // Preparing again at the same rate keeps the drum.
+    const auto* drum = proc.getDrum();
+    const int swaps = proc.getModelSwapCount();
+    prepare (proc, 48000.0, 64);
+    CHECK (proc.getDrum() == drum);
+    CHECK (proc.getModelSwapCount() == swaps);
+}
+
+TEST_CASE ("snares off / on notes hold until the snares_engaged parameter changes", "[processor][midi]")
+{
+    SnareSimAudioProcessor proc;
+    fastSettings (proc);
+    prepare (proc, 48000.0, 256);
+    REQUIRE (proc.getDrum()->snaresEngaged());
+
+    render (proc, 256, 512, { { 10, note (100, 33) } });   // snares off
+    CHECK_FALSE (proc.getDrum()->snaresEngaged());
+
+    // Live parameter changes and strikes do not put them back.
+    set (proc, ParamId::damping, 50.0);
+    render (proc, 256, 4096, { { 10, note (100, 38) } });
+    CHECK_FALSE (proc.getDrum()->snaresEngaged());
+
+    render (proc, 256, 512, { { 10, note (100, 34) } });   // snares on
+    CHECK (proc.getDrum()->snaresEngaged());
+    render (proc, 256, 512, { { 10, note (100, 33) } });
+    CHECK_FALSE (proc.getDrum()->snaresEngaged());
+
+    // The parameter changing wins: 1 -> 0 keeps them off, 0 -> 1 puts them on.
+    set (proc, ParamId::snaresEngaged, 0.0);
+    render (proc, 256, 256);
+    CHECK_FALSE (proc.getDrum()->snaresEngaged());
+    set (proc, ParamId::snaresEngaged, 1.0);
+    render (proc, 256, 256);
+    CHECK (proc.getDrum()->snaresEngaged());
+}
+
+TEST_CASE ("the factory presets are the programs", "[processor][programs]")
+{
+    SnareSimAudioProcessor proc;
+    const auto presets = snaresim::factoryPresets();
+    REQUIRE (proc.getNumPrograms() == 9);
+    REQUIRE (presets.size() == 9);
+    CHECK (proc.getProgramName (-1).isEmpty());
+    CHECK (proc.getProgramName (9).isEmpty());
+
+    for (int i = 0; i < proc.getNumPrograms(); ++i)
+    {
+        const auto& preset = presets[(size_t) i];
+        INFO ("program " << i << " " << std::string (preset.name));
+        CHECK (proc.getProgramName (i) == juce::String (std::string (preset.name)));
+
+        // Move everything away from the defaults first: the program sets every parameter.
+        for (auto* p : proc.getParameters())
+            p->setValueNotifyingHost (0.77f);
+
+        proc.setCurrentProgram (i);
+        CHECK (proc.getCurrentProgram() == i);
+
+        snaresim::ParameterSet expected;
+        REQUIRE (snaresim::applyPreset (preset.name, expected));
+        const auto actual = proc.currentParameters();
+        for (const auto& spec : snaresim::parameterSpecs())
+        {
+            INFO ("parameter " << spec.key);
+            CHECK (actual.get (spec.id) == Approx (expected.get (spec.id)).epsilon (1e-5).margin (1e-9));
+        }
+    }
+
+    proc.setCurrentProgram (42);    // ignored
+    CHECK (proc.getCurrentProgram() == 8);
+}
+
+TEST_CASE ("a version-1 state loads with its values mapped", "[processor][state]")
+{
+    CHECK (SnareSimAudioProcessor::dampingFromDecay (4.0) == Approx (0.0).margin (1e-12));
+    CHECK (SnareSimAudioProcessor::dampingFromDecay (0.15) == Approx (100.0));
+    CHECK (SnareSimAudioProcessor::dampingFromDecay (10.0) == 0.0);
+    CHECK (SnareSimAudioProcessor::dampingFromDecay (0.1) == 100.0);
+    CHECK (SnareSimAudioProcessor::dampingFromDecay (std::numeric_limits<double>::quiet_NaN()) == 25.0);
+
+    for (const int version : { 1, 0 })
+    {
+        INFO ("state version " << version);
+        SnareSimAudioProcessor proc;
+        // Values the state does not mention go back to their defaults.
+        set (proc, ParamId::snareTension, 77.0);
+        set (proc, ParamId::micRoom, 0.9);
+
+        juce::XmlElement v1 ("SnareSimState");
+        if (version > 0)
+            v1.setAttribute ("stateVersion", version);
+        auto add = [&v1] (const char* id, const juce::String& value)
+        {
+            auto* p = v1.createNewChildElement ("PARAM");
+            p->setAttribute ("id", id);
+            p->setAttribute ("value", value);
+        };
+        add ("batter_tension", "4200");
+        add ("batter_decay", "1.5");
+        add ("batter_high_damping", "0.002");
+        add ("listen_position", "0.7");
+        add ("grid_coarseness", "2");
+        add ("output_gain", "99");              // out of range: clamped
+        add ("snare_count", "nonsense");        // not a number: 0, clamped to 1
+        add ("mallet_mass", "nan");             // not finite: default
+        add ("no_such_parameter", "12");
+        v1.createNewChildElement ("SOMETHING_ELSE")->setAttribute ("id", "damping");
+
+        juce::MemoryBlock state;
+        juce::AudioProcessor::copyXmlToBinary (v1, state);
+        proc.setStateInformation (state.getData(), (int) state.getSize());
+
+        const auto p = proc.currentParameters();
+        CHECK (p.get (ParamId::batterTension) == Approx (4200.0));
+        CHECK (p.get (ParamId::damping) == Approx (100.0 * std::log (1.5 / 4.0) / std::log (0.15 / 4.0)).epsilon (1e-5));
+        CHECK (p.get (ParamId::highDamping) == Approx (0.002).epsilon (1e-5));
+        CHECK (p.get (ParamId::micTopPosition) == Approx (0.7).epsilon (1e-6));
+        CHECK (p.get (ParamId::gridCoarseness) == Approx (2.0));
+        CHECK (p.get (ParamId::outputGain) == Approx (12.0));
+        CHECK (p.get (ParamId::snareCount) == 1.0);
+        CHECK (p.get (ParamId::malletMass) == Approx (0.028));
+        CHECK (p.get (ParamId::snareTension) == Approx (30.0));
+        CHECK (p.get (ParamId::micRoom) == Approx (0.2));
+
+        // And it plays.
+        prepare (proc, 48000.0, 256);
+        const auto r = render (proc, 256, 1024, { { 0, note (100) } });
+        CHECK (r.allFinite);
+    }
+
+    // A version-2 state does not rename: an old key in it is unknown.
+    SnareSimAudioProcessor proc;
+    juce::XmlElement v2 ("SnareSimState");
+    v2.setAttribute ("stateVersion", 2);
+    auto* p = v2.createNewChildElement ("PARAM");
+    p->setAttribute ("id", "batter_decay");
+    p->setAttribute ("value", 0.2);
+    juce::MemoryBlock state;
+    juce::AudioProcessor::copyXmlToBinary (v2, state);
+    proc.setStateInformation (state.getData(), (int) state.getSize());
+    CHECK (proc.currentParameters().get (ParamId::damping) == Approx (25.0));
+}
+
+TEST_CASE ("garbage states never crash", "[processor][state]")
+{
+    SnareSimAudioProcessor proc;
+    std::mt19937 random (3);
+    juce::MemoryBlock good;
+    proc.getStateInformation (good);
+
+    for (int i = 0; i < 200; ++i)
+    {
+        juce::MemoryBlock bad (good);
+        for (int k = 0; k < 1 + i % 20; ++k)
+            bad[(size_t) (random() % bad.getSize())] = (char) (random() % 256);
+        if (i % 7 == 0)
+            bad.setSize ((size_t) (random() % bad.getSize()));
+        proc.setStateInformation (bad.getData(), (int) bad.getSize());
+    }
+
+    for (const auto& spec : snaresim::parameterSpecs())
+    {
+        const double v = proc.currentParameters().get (spec.id);
+        CHECK (std::isfinite (v));
+        CHECK (v >= spec.minValue);
+        CHECK (v <= spec.maxValue);
+    }
+}
+
+TEST_CASE ("snapshots reach the editor through the triple buffer", "[processor][editor]")
+{
+    SnareSimAudioProcessor proc;
+    fastSettings (proc);
+    snaresim::DrumSnapshot snapshot;
+    CHECK_FALSE (proc.pullSnapshot (snapshot));
+
+    prepare (proc, 48000.0, 256);
+    render (proc, 256, 2000, { { 0, note (120) } });
+    REQUIRE (proc.pullSnapshot (snapshot));
+    CHECK (snapshot.peakDisplacement > 0.0f);
+    CHECK (snapshot.samplesRendered > 0);
+    CHECK (snapshot.numWires == 5);
+    CHECK_FALSE (proc.pullSnapshot (snapshot));    // nothing new
+
+    // About 30 per second of audio; the newest wins.
+    render (proc, 256, 48000 / 5);
+    REQUIRE (proc.pullSnapshot (snapshot));
+    CHECK (snapshot.samplesRendered >= 2000 + 48000 / 5 - 1700);
+    CHECK (snapshot.samplesRendered <= 2000 + 48000 / 5);
+}
+
+TEST_CASE ("the meters and counters are published", "[processor][editor]")
+{
+    SnareSimAudioProcessor proc;
+    fastSettings (proc);
+    prepare (proc, 48000.0, 256);
+    CHECK (proc.getNonFiniteResets() == 0);
+
+    render (proc, 256, 9600, { { 0, note (127) } });
+    CHECK (proc.getCpuLoad() > 0.0f);
+    CHECK (proc.getPeakCpuLoad() >= proc.getCpuLoad() * 0.5f);
+    CHECK (std::isfinite (proc.getCpuLoad()));
+    CHECK (proc.getMaxNewtonIterations() > 0);
+    CHECK (proc.getSolverFallbacks() >= 0);
+    CHECK (proc.getNonFiniteResets() == 0);
+
+    // The counts survive a model swap.
+    const int iterations = proc.getMaxNewtonIterations();
+    const int swaps = proc.getModelSwapCount();
+    set (proc, ParamId::snareCount, 6.0);
+    REQUIRE (waitForModelSwaps (proc, swaps + 1));
+    render (proc, 256, fadeSamples);
+    CHECK (proc.getMaxNewtonIterations() >= iterations);
+}
+
+TEST_CASE ("the output is finite and free of subnormals whatever the host sends", "[processor][guard]")
+{
+    SnareSimAudioProcessor proc;
+    fastSettings (proc);
+    prepare (proc, 48000.0, 128);
+
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const float inf = std::numeric_limits<float>::infinity();
+    const std::array<float, 7> absurd { nan, inf, -inf, 1.0e30f, -1.0e30f, 1.0e-40f, 0.0f };
+    std::mt19937 random (5);
+    auto& state = proc.getValueTreeState();
+
+    // NaN in the buffer (as input) and absurd values straight into the parameters' atomics
+    // (the grid ones left alone, so that this stays fast).
+    const auto r = render (proc, 128, 48000 / 2,
+                           { { 0, note (127) }, { 6000, note (127, 40) }, { 12000, note (1, 37) }, { 18000, note (127, 33) } },
+                           [&] (int)
+                           {
+                               for (const auto& spec : snaresim::parameterSpecs())
+                                   if (! spec.needsNewGrid)
+                                       state.getRawParameterValue (juce::String (std::string (spec.key)))
+                                           ->store (absurd[random() % absurd.size()]);
+                           },
+                           nan);
+    CHECK (r.allFinite);
+    CHECK_FALSE (r.anySubnormal);
+    CHECK (r.channelsIdentical);
+
+    // Normalised values out of 0..1 through the parameter objects.
+    for (auto* p : proc.getParameters())
+        p->setValue (random() % 2 == 0 ? -5.0f : 7.0f);
+    const auto r2 = render (proc, 128, 4800, { { 0, note (127) } }, {}, inf);
+    CHECK (r2.allFinite);
+    CHECK_FALSE (r2.anySubnormal);
+}
+
+TEST_CASE ("parameters, programs, state and the editor from the message thread while the audio thread plays", "[processor][threads]")
+{
+    SnareSimAudioProcessor proc;
+    fastSettings (proc);
+    prepare (proc, 48000.0, 128);
+    juce::MemoryBlock fastState;
+    proc.getStateInformation (fastState);
+
+    std::atomic<bool> quit { false };
+    std::atomic<long> blocks { 0 }, bad { 0 };
+    std::thread audio ([&]
+    {
+        juce::AudioBuffer<float> buffer (2, 128);
+        juce::MidiBuffer midi;
+        std::mt19937 random (9);
+        while (! quit)
+        {
+            midi.clear();
+            if (blocks % 10 == 0)
+                midi.addEvent (note (30 + (int) (random() % 98), 33 + (int) (random() % 8)), (int) (random() % 128));
+            proc.processBlock (buffer, midi);
+            for (int ch = 0; ch < 2; ++ch)
+                for (int i = 0; i < 128; ++i)
+                    if (! std::isfinite (buffer.getSample (ch, i)))
+                        ++bad;
+            ++blocks;
+        }
+    });
+
+    std::mt19937 random (13);
+    const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds (1500);
+    int round = 0;
+    snaresim::DrumSnapshot snapshot;
+    while (std::chrono::steady_clock::now() < until || blocks < 100)
+    {
+        switch (round++ % 4)
+        {
+            case 0:
+                for (const auto& spec : snaresim::parameterSpecs())
+                    if (! spec.needsNewGrid)
+                        parameter (proc, spec.id).setValueNotifyingHost ((float) (random() % 1001) / 1000.0f);
+                break;
+            case 1:
+                proc.setCurrentProgram ((int) (random() % 9));
+                fastSettings (proc);
+                break;
+            case 2:
+                proc.setStateInformation (fastState.getData(), (int) fastState.getSize());
+                break;
+            default:
+            {
+                std::unique_ptr<juce::AudioProcessorEditor> editor (proc.createEditorIfNeeded());
+                CHECK (editor != nullptr);
+                editor.reset();
+                break;
+            }
+        }
+        proc.pullSnapshot (snapshot);
+        juce::ignoreUnused (proc.getCpuLoad(), proc.getSolverFallbacks());
+        std::this_thread::sleep_for (std::chrono::milliseconds (3));
+    }
+
+    quit = true;
+    audio.join();
+    CHECK (blocks >= 100);
+    CHECK (bad == 0);
+}
