@@ -2,7 +2,8 @@
 # Sets up a Debian 12 machine, builds SnareSim and either renders a demo strike or runs the tests.
 #
 #   bash scripts/bootstrap.sh demo   # build, then render out/demo.wav (prints its absolute path)
-#   bash scripts/bootstrap.sh test   # build everything, then run the whole test suite (ctest)
+#   bash scripts/bootstrap.sh test   # build everything, run the short benchmark (prints its JSON
+#                                    # line; never fails on time), then the whole test suite (ctest)
 #
 # Safe to rerun: packages are installed only when missing, and the build in build/ only redoes
 # what changed.
@@ -86,6 +87,15 @@ case "$mode" in
     test)
         log "building everything"
         cmake --build "$build_dir" -j "$jobs"
+        # The short benchmark, so that it cannot rot: 0.25 s of audio, its JSON line on stdout.
+        # It fails only on a crash or non-finite output, never on a time (see BENCHMARKS.md).
+        log "running the short benchmark (timings are informative only)"
+        renderer="$build_dir/Source/Renderer/snaresim-render"
+        if [ ! -x "$renderer" ]; then
+            renderer=$(find "$build_dir" -type f -name snaresim-render -perm -u+x -print -quit)
+        fi
+        "$renderer" --bench --bench-short --json
+
         log "running the tests"
         ctest --test-dir "$build_dir" --output-on-failure
         ;;

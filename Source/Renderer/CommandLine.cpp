@@ -10,6 +10,7 @@
 #include <optional>
 #include <string_view>
 #include <system_error>
+#include <utility>
 #include <vector>
 
 namespace snaresim::render
@@ -171,6 +172,56 @@ ParameterOverride parseOverride(std::string_view text)
     return result;
 }
 
+int parseBlockSize(std::string_view text)
+{
+    const int size = parseInteger(text, "--block-size");
+    if (size < kMinBlockSize || size > kMaxBlockSize)
+        fail("--block-size: " + inQuotes(text) + " is outside " + std::to_string(kMinBlockSize) + ".."
+             + std::to_string(kMaxBlockSize) + " samples");
+    return size;
+}
+
+BenchScenario parseScenario(std::string_view text)
+{
+    if (text == "default")
+        return BenchScenario::standard;
+    if (text == "roll")
+        return BenchScenario::roll;
+    fail("--bench-scenario: " + inQuotes(text) + " is not one of default|roll");
+}
+
+// The benchmark runs the plug-in's path (Drum::process, the mix, no energy tracking) and
+// writes nothing but the optional WAV: the options that need more are refused with it.
+void checkBenchOptions(const RenderJob& job, bool haveSeconds)
+{
+    if (! job.bench)
+    {
+        if (job.blockSize)
+            fail("--block-size is an option of --bench");
+        if (job.benchScenario)
+            fail("--bench-scenario is an option of --bench");
+        if (job.benchShort)
+            fail("--bench-short is an option of --bench");
+        return;
+    }
+
+    const std::pair<bool, const char*> outputs[] { { job.energyCsv.has_value(), "--energy-csv" },
+                                                   { job.energyPlot.has_value(), "--energy-plot" },
+                                                   { job.spectrogram.has_value(), "--spectrogram" },
+                                                   { job.snarePlot.has_value(), "--snare-plot" } };
+    for (const auto& [given, option] : outputs)
+        if (given)
+            fail(std::string(option) + " cannot be used with --bench (the benchmark writes only the WAV, -o)");
+    if (job.lossless)
+        fail("--lossless cannot be used with --bench (the benchmark runs the plug-in's configuration)");
+    if (job.mic && *job.mic != MicOutput::mix)
+        fail("--mic: --bench renders the mix only (Drum::process, the plug-in's output)");
+    if (job.benchShort && haveSeconds)
+        fail("--bench-short renders " + numberText(kBenchShortSeconds) + " s; leave out --seconds");
+    if (job.benchShort && job.benchScenario)
+        fail("--bench-short runs the default scenario; leave out --bench-scenario");
+}
+
 double parseSampleRate(std::string_view text)
 {
     const double rate = parseNumber(text, "--sample-rate");
@@ -293,6 +344,14 @@ CommandLine parseCommandLine(const std::vector<std::string>& args)
             job.json = flag();
         else if (option == "--list-params")
             listParameters = flag();
+        else if (option == "--bench")
+            job.bench = flag();
+        else if (option == "--bench-short")
+            job.benchShort = flag();
+        else if (option == "--block-size")
+            setOnce(job.blockSize, parseBlockSize(value()), option);
+        else if (option == "--bench-scenario")
+            setOnce(job.benchScenario, parseScenario(value()), option);
         else
             fail("unknown option " + inQuotes(option) + " (see --help)");
     }
@@ -306,11 +365,13 @@ CommandLine parseCommandLine(const std::vector<std::string>& args)
         return result;
     }
 
-    if (! output)
-        fail("missing -o OUTPUT.wav (see --help)");
-    job.output = *output;
+    checkBenchOptions(job, job.seconds.has_value());
 
-    if (job.hits.empty() && ! job.midiFile)
+    if (! output && ! job.bench)
+        fail("missing -o OUTPUT.wav (see --help)");
+    job.output = output;
+
+    if (job.hits.empty() && ! job.midiFile && ! job.bench)
         fail("nothing to play: give --hit TIME:VELOCITY or --midi FILE (see --help)");
 
     return result;
@@ -336,6 +397,8 @@ std::string helpText()
 
 Usage:
   snaresim-render -o OUT.wav (--hit TIME:VELOCITY ... | --midi FILE.mid) [options]
+  snaresim-render --bench [-o OUT.wav] [--bench-scenario default|roll | --bench-short]
+                  [--block-size N] [--hit ... | --midi ...] [options]
   snaresim-render --list-params
   snaresim-render --help
 
@@ -389,6 +452,25 @@ Model:
   --lossless            switch every loss off (energy is then conserved); reports the
                         energy balance drift (energy_relative_drift_max)
   --list-params         list every parameter (ID, range, unit, default) and exit
+
+Benchmark:
+  --bench               time the render as the plug-in runs it: the drum built from the
+                        parameters (makeDrumConfig), blocks of --block-size samples through
+                        Drum::process (the mix), strikes as MIDI note 38 (Drum::playNote) on
+                        their sample, no energy tracking, denormals flushed; every block is
+                        timed (steady clock). -o is optional; the other outputs, --lossless
+                        and --mic other than mix are refused. The summary / JSON adds
+                        realtime_factor (audio s / wall s), mean_block_ms, worst_block_ms,
+                        block_budget_ms (one block's duration), worst_block_share (worst /
+                        budget), block_size, blocks and the grid (batter_grid_spacing_m,
+                        carry_grid_spacing_m, snare_points). Non-finite output: exit 1.
+  --block-size N        samples per block, 1..8192 (default 64)
+  --bench-scenario S    the strikes when no --hit / --midi is given: default = velocity
+                        127 every 0.5 s for --seconds (default 2); roll = 16 strikes at
+                        velocity 127, 60 ms apart from 0.1 s, 1.5 s long (--seconds changes
+                        the length only)
+  --bench-short         a quick check (for CI): the default scenario for 0.25 s; fails only
+                        on a crash or non-finite output, never on time
 )" + presetLine() + R"(
 Exit status: 0 success, 2 bad input or unwritable output (one line on stderr starting
 with "snaresim-render: error: ", no output file left behind), 1 internal failure,

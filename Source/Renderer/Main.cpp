@@ -4,8 +4,10 @@
 // Exit codes: 0 success; 2 bad input or unusable file (one line on stderr starting with
 // "snaresim-render: error: ", no output left behind); 1 unexpected internal failure;
 // 128 + N when interrupted by signal N (SIGINT, SIGTERM, SIGHUP; no output left behind).
+// --bench also exits with 1 when the output went non-finite (after its report), never on time.
 
 #include "AtomicFile.h"
+#include "Benchmark.h"
 #include "CommandLine.h"
 #include "EnergyCsvWriter.h"
 #include "EnergyPlot.h"
@@ -59,7 +61,9 @@ bool sameFile(const fs::path& a, const fs::path& b)
 // Every output with its option, for the "same file" checks.
 std::vector<std::pair<std::string, fs::path>> outputsOf(const RenderJob& job)
 {
-    std::vector<std::pair<std::string, fs::path>> outputs { { "-o", job.output } };
+    std::vector<std::pair<std::string, fs::path>> outputs;
+    if (job.output)
+        outputs.emplace_back("-o", *job.output);
     if (job.energyCsv)
         outputs.emplace_back("--energy-csv", *job.energyCsv);
     if (job.energyPlot)
@@ -123,7 +127,7 @@ int render(const RenderJob& job)
     const auto mics = micChannels(mic);
 
     // Then the outputs, before any rendering: a bad path fails here.
-    AtomicFile wavFile(job.output);
+    AtomicFile wavFile(*job.output);
     WavWriter wav(wavFile, plan.sampleRate_Hz, (int) mics.size());
 
     std::optional<AtomicFile> csvFile;
@@ -223,12 +227,63 @@ int render(const RenderJob& job)
     const RenderReport report { job,
                                 plan,
                                 stats,
-                                fs::absolute(job.output).lexically_normal(),
+                                absolutePath(job.output),
                                 absolutePath(job.energyCsv),
                                 absolutePath(job.energyPlot),
                                 absolutePath(job.spectrogram),
                                 absolutePath(job.snarePlot) };
     std::cout << (job.json ? formatJson(report) : formatSummary(report)) << std::flush;
+    return 0;
+}
+
+// --bench (Benchmark.h): the render timed block by block as the plug-in runs it. Fails (exit
+// 1, after the report) when the output went non-finite; never on time.
+int benchmark(const RenderJob& commandLineJob)
+{
+    installInterruptHandlers();
+    checkDistinctFiles(commandLineJob);
+
+    const auto job = benchmarkJob(commandLineJob);
+    const auto params = makeParameters(job);
+    const auto midiStrikes = job.midiFile ? readMidiStrikes(*job.midiFile) : std::vector<Strike> {};
+    const auto plan = makeRenderPlan(job, midiStrikes);
+    const auto config = makeConfig(job, params); // no --lossless with --bench: makeDrumConfig as is
+    const auto drum = makeDrum(config);
+
+    std::optional<AtomicFile> wavFile;
+    std::unique_ptr<WavWriter> wav;
+    if (job.output)
+    {
+        wavFile.emplace(*job.output);
+        wav = std::make_unique<WavWriter>(*wavFile, plan.sampleRate_Hz, 1);
+    }
+
+    const auto stats = benchmarkDrum(*drum, plan, job.selectedBlockSize(), [&](std::span<const float> block) {
+        throwIfInterrupted(); // once per block, outside the timed section
+        if (wav)
+        {
+            const float* channel = block.data();
+            wav->write(&channel, (int) block.size());
+        }
+    });
+
+    if (wav)
+    {
+        wav->finish();
+        throwIfInterrupted();
+        wavFile->commit();
+    }
+
+    // The command line's job: the scenario is named from it (job holds its strikes as --hit).
+    const RenderReport report { commandLineJob, plan, stats, absolutePath(job.output), {}, {}, {}, {} };
+    std::cout << (job.json ? formatJson(report) : formatSummary(report)) << std::flush;
+
+    if (stats.nonfiniteSamples > 0)
+    {
+        std::cerr << "snaresim-render: benchmark failed: the output has " << stats.nonfiniteSamples
+                  << " non-finite sample(s)" << std::endl;
+        return 1;
+    }
     return 0;
 }
 
@@ -247,7 +302,7 @@ int run(const std::vector<std::string>& args)
         case CommandLine::Action::render:
             break;
     }
-    return render(commandLine.job);
+    return commandLine.job.bench ? benchmark(commandLine.job) : render(commandLine.job);
 }
 
 // Messages are printed as exactly one line.

@@ -19,6 +19,12 @@ inline constexpr double kDefaultSeconds = 2.0;     // --hit only, no --seconds
 inline constexpr double kMidiTailSeconds = 2.0;    // --midi, no --seconds: last note-on + this
 inline constexpr double kMaxSeconds = 3600.0;      // longest render (and latest strike time)
 
+// --bench: blocks of --block-size samples through Drum::process, as the plug-in renders.
+inline constexpr int kDefaultBlockSize = 64;
+inline constexpr int kMinBlockSize = 1;
+inline constexpr int kMaxBlockSize = 8192;
+inline constexpr double kBenchShortSeconds = 0.25; // --bench-short: the default scenario, this long
+
 // One strike: when, and how hard (MIDI velocity 1..127).
 struct Strike
 {
@@ -36,6 +42,15 @@ enum class MicOutput
     all
 };
 
+// --bench-scenario: the strikes a benchmark plays when no --hit / --midi is given.
+//   standard ("default"): one strike at velocity 127 every 0.5 s from 0 (length: --seconds, 2 s)
+//   roll:                 16 strikes at velocity 127, 60 ms apart from 0.1 s (length 1.5 s)
+enum class BenchScenario
+{
+    standard,
+    roll
+};
+
 // One --set ID=VALUE (ID already resolved; the range is checked by ParameterSet::set).
 struct ParameterOverride
 {
@@ -46,7 +61,7 @@ struct ParameterOverride
 
 struct RenderJob
 {
-    std::filesystem::path output;                   // -o (WAV)
+    std::optional<std::filesystem::path> output;    // -o (WAV); always given unless bench
     std::optional<std::filesystem::path> energyCsv; // --energy-csv
     std::optional<std::filesystem::path> energyPlot; // --energy-plot (PNG)
     std::optional<std::filesystem::path> spectrogram; // --spectrogram (PNG)
@@ -61,8 +76,14 @@ struct RenderJob
     std::vector<ParameterOverride> overrides;       // --set, applied in order after the preset
     bool lossless = false;                          // --lossless
     bool json = false;                              // --json
+    bool bench = false;                             // --bench
+    std::optional<int> blockSize;                   // --block-size (bench only, checked range)
+    std::optional<BenchScenario> benchScenario;     // --bench-scenario (bench only)
+    bool benchShort = false;                        // --bench-short (bench only)
 
     MicOutput selectedMic() const { return mic.value_or(MicOutput::mix); }
+    int selectedBlockSize() const { return blockSize.value_or(kDefaultBlockSize); }
+    BenchScenario selectedScenario() const { return benchScenario.value_or(BenchScenario::standard); }
 };
 
 } // namespace snaresim::render

@@ -17,6 +17,21 @@
 namespace snaresim::render
 {
 
+// --bench (Benchmark.h): the timing of every block and the size of the model.
+struct BenchFigures
+{
+    int blockSize = 0;
+    std::int64_t blocks = 0;
+    double meanBlock_s = 0.0;
+    double worstBlock_s = 0.0;
+    double blockBudget_s = 0.0;        // blockSize / sample rate
+    double batterGridSpacing_m = 0.0;  // Drum::batter().grid().spacing()
+    double carryGridSpacing_m = 0.0;
+    int batterNodes = 0;               // interior nodes of the batter / carry grids
+    int carryNodes = 0;
+    int snarePoints = 0;               // SnareContact::numPoints(): wire points that collide
+};
+
 struct RenderStats
 {
     std::int64_t samples = 0;
@@ -30,6 +45,7 @@ struct RenderStats
     // never held energy); NaN when the ledger went non-finite.
     std::optional<double> energyRelativeDriftMax;
     SolverStats solver;
+    std::optional<BenchFigures> bench;  // --bench only
 };
 
 struct RenderSinks

@@ -1,5 +1,6 @@
 #include "Report.h"
 
+#include "Benchmark.h"
 #include "Microphones.h"
 
 #include <juce_core/juce_core.h>
@@ -53,7 +54,7 @@ std::string formatJson(const RenderReport& r)
     auto* object = new juce::DynamicObject();
     const juce::var root(object);
 
-    object->setProperty("output", text(r.output.string()));
+    object->setProperty("output", pathOrNull(r.output));
     object->setProperty("energy_csv", pathOrNull(r.energyCsv));
     object->setProperty("energy_plot", pathOrNull(r.energyPlot));
     object->setProperty("spectrogram", pathOrNull(r.spectrogram));
@@ -80,13 +81,67 @@ std::string formatJson(const RenderReport& r)
     object->setProperty("snare_max_penetration_m", r.stats.solver.maxSnarePenetration_m);
     object->setProperty("solver_fallbacks", (juce::int64) r.stats.solver.fallbacks);
 
+    if (const auto& b = r.stats.bench)
+    {
+        object->setProperty("bench", true);
+        object->setProperty("bench_scenario", text(std::string(scenarioName(r.job))));
+        object->setProperty("bench_short", r.job.benchShort);
+        object->setProperty("block_size", b->blockSize);
+        object->setProperty("blocks", (juce::int64) b->blocks);
+        object->setProperty("mean_block_ms", 1000.0 * b->meanBlock_s);
+        object->setProperty("worst_block_ms", 1000.0 * b->worstBlock_s);
+        object->setProperty("block_budget_ms", 1000.0 * b->blockBudget_s);
+        object->setProperty("worst_block_share", b->worstBlock_s / b->blockBudget_s);
+        object->setProperty("batter_grid_spacing_m", b->batterGridSpacing_m);
+        object->setProperty("carry_grid_spacing_m", b->carryGridSpacing_m);
+        object->setProperty("batter_nodes", b->batterNodes);
+        object->setProperty("carry_nodes", b->carryNodes);
+        object->setProperty("snare_points", b->snarePoints);
+    }
+
     return juce::JSON::toString(root, true).toStdString() + "\n";
 }
 
-std::string formatSummary(const RenderReport& r)
+namespace
+{
+
+std::string benchSummary(const RenderReport& r, const BenchFigures& b)
 {
     std::string s;
-    s += "wrote " + r.output.string()
+    s += formatted("benchmark: %s scenario%s, %.3f s at %.0f Hz, block size %d (%lld blocks), %d strike%s",
+                   std::string(scenarioName(r.job)).c_str(), r.job.benchShort ? " (short)" : "",
+                   secondsRendered(r), r.plan.sampleRate_Hz, b.blockSize, (long long) b.blocks, r.stats.strikes,
+                   r.stats.strikes == 1 ? "" : "s");
+    if (r.plan.strikesOutside > 0)
+        s += formatted(" (%d more at or after the end, not played)", r.plan.strikesOutside);
+    s += "\n";
+    s += formatted("realtime factor %.3gx (%.3f s of audio in %.3f s)\n", realtimeFactor(r), secondsRendered(r),
+                   r.stats.wallSeconds);
+    s += formatted("block time: mean %.4g ms, worst %.4g ms; budget %.4g ms (worst = %.3g x the budget)\n",
+                   1000.0 * b.meanBlock_s, 1000.0 * b.worstBlock_s, 1000.0 * b.blockBudget_s,
+                   b.worstBlock_s / b.blockBudget_s);
+    s += formatted("grid: batter h %.4g mm (%d nodes), carry h %.4g mm (%d nodes), %d snare points\n",
+                   1000.0 * b.batterGridSpacing_m, b.batterNodes, 1000.0 * b.carryGridSpacing_m, b.carryNodes,
+                   b.snarePoints);
+    s += formatted("peak %.6g, rms %.6g, non-finite samples %lld\n", r.stats.peak, r.stats.rms,
+                   (long long) r.stats.nonfiniteSamples);
+    if (r.output)
+        s += "wrote " + r.output->string() + formatted(" (%.3f s, %.0f Hz, mono (mix), 32-bit float)\n",
+                                                        secondsRendered(r), r.plan.sampleRate_Hz);
+    if (r.stats.solver.fallbacks > 0)
+        s += formatted("warning: the contact solver fell back %ld time(s)\n", r.stats.solver.fallbacks);
+    return s;
+}
+
+} // namespace
+
+std::string formatSummary(const RenderReport& r)
+{
+    if (r.stats.bench)
+        return benchSummary(r, *r.stats.bench);
+
+    std::string s;
+    s += "wrote " + (r.output ? r.output->string() : std::string("(no file)"))
          + formatted(" (%.3f s, %.0f Hz, ", secondsRendered(r), r.plan.sampleRate_Hz)
          + channelText(r.stats.channels) + " (" + std::string(micName(r.job.selectedMic())) + "), 32-bit float)\n";
     if (r.energyCsv)

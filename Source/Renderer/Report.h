@@ -18,14 +18,16 @@ struct RenderReport
     const RenderJob& job;
     const RenderPlan& plan;
     const RenderStats& stats;
-    std::filesystem::path output;                   // absolute
+    std::optional<std::filesystem::path> output;    // absolute (none: --bench without -o)
     std::optional<std::filesystem::path> energyCsv; // absolute
     std::optional<std::filesystem::path> energyPlot; // absolute
     std::optional<std::filesystem::path> spectrogram; // absolute
     std::optional<std::filesystem::path> snarePlot; // absolute
 };
 
-// One line, ends with a newline. Non-finite numbers are written as null.
+// One line, ends with a newline. Non-finite numbers are written as null. With --bench
+// (stats.bench) it adds mean_block_ms, worst_block_ms, block_budget_ms, worst_block_share,
+// block_size, blocks, bench_scenario, bench_short and the grid figures.
 std::string formatJson(const RenderReport& report);
 
 // A few lines, ends with a newline.

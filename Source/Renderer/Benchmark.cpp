@@ -1,0 +1,135 @@
+#include "Benchmark.h"
+
+#include <juce_audio_basics/juce_audio_basics.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <vector>
+
+namespace snaresim::render
+{
+
+std::string_view scenarioName(const RenderJob& job)
+{
+    if (! job.hits.empty() || job.midiFile)
+        return "custom";
+    return job.selectedScenario() == BenchScenario::roll ? "roll" : "default";
+}
+
+RenderJob benchmarkJob(const RenderJob& job)
+{
+    RenderJob result = job;
+    const auto scenario = job.selectedScenario();
+
+    if (job.benchShort && ! result.seconds)
+        result.seconds = kBenchShortSeconds;
+    if (! result.seconds && ! job.midiFile)
+        result.seconds = scenario == BenchScenario::roll ? kRollSeconds : kDefaultSeconds;
+
+    if (! job.hits.empty() || job.midiFile)
+        return result; // explicit strikes replace the scenario's
+
+    if (scenario == BenchScenario::roll)
+    {
+        for (int i = 0; i < kRollStrikes; ++i)
+            result.hits.push_back({ kRollStart_s + i * kRollInterval_s, kBenchVelocity });
+    }
+    else
+    {
+        // One strike every 0.5 s from 0 while inside the render (times from the index, so
+        // that no rounding accumulates).
+        for (int i = 0; i * kDefaultScenarioInterval_s < *result.seconds; ++i)
+            result.hits.push_back({ i * kDefaultScenarioInterval_s, kBenchVelocity });
+    }
+    return result;
+}
+
+RenderStats benchmarkDrum(Drum& drum, const RenderPlan& plan, int blockSize,
+                          const std::function<void(std::span<const float>)>& audio)
+{
+    using Clock = std::chrono::steady_clock;
+
+    // The plug-in's processBlock runs with denormals flushed to zero; so does the benchmark.
+    const juce::ScopedNoDenormals noDenormals;
+
+    drum.setEnergyTracking(false);
+    drum.resetStats();
+
+    std::vector<float> block((std::size_t) blockSize);
+    const auto& strikes = plan.strikes;
+    std::size_t nextStrike = 0;
+
+    Clock::duration total {}, worst {};
+    std::int64_t blocks = 0;
+
+    double peak = 0.0, sumSquares = 0.0;
+    std::int64_t finite = 0, nonfinite = 0;
+
+    for (std::int64_t position = 0; position < plan.numSamples;)
+    {
+        const int n = (int) std::min<std::int64_t>(blockSize, plan.numSamples - position);
+        const auto start = Clock::now();
+
+        // As the plug-in does with MIDI events: render up to the strike's sample, play the
+        // note, render on.
+        int done = 0;
+        while (done < n)
+        {
+            while (nextStrike < strikes.size() && strikes[nextStrike].sample <= position + done)
+                drum.playNote(kBenchNote, strikes[nextStrike++].velocity);
+            int until = n;
+            if (nextStrike < strikes.size() && strikes[nextStrike].sample < position + n)
+                until = (int) (strikes[nextStrike].sample - position);
+            drum.process(block.data() + done, until - done);
+            done = until;
+        }
+
+        const auto elapsed = Clock::now() - start;
+        total += elapsed;
+        worst = std::max(worst, elapsed);
+        ++blocks;
+
+        const std::span<const float> samples(block.data(), (std::size_t) n);
+        for (const float x : samples)
+        {
+            if (! std::isfinite(x))
+            {
+                ++nonfinite;
+                continue;
+            }
+            peak = std::max(peak, (double) std::abs(x));
+            sumSquares += (double) x * (double) x;
+            ++finite;
+        }
+        if (audio)
+            audio(samples);
+        position += n;
+    }
+
+    RenderStats stats;
+    stats.samples = plan.numSamples;
+    stats.channels = 1;
+    stats.wallSeconds = std::chrono::duration<double>(total).count();
+    stats.peak = peak;
+    stats.rms = finite > 0 ? std::sqrt(sumSquares / (double) finite) : 0.0;
+    stats.nonfiniteSamples = nonfinite;
+    stats.strikes = (int) nextStrike;
+    stats.solver = drum.solverStats();
+
+    BenchFigures figures;
+    figures.blockSize = blockSize;
+    figures.blocks = blocks;
+    figures.meanBlock_s = blocks > 0 ? stats.wallSeconds / (double) blocks : 0.0;
+    figures.worstBlock_s = std::chrono::duration<double>(worst).count();
+    figures.blockBudget_s = (double) blockSize / plan.sampleRate_Hz;
+    figures.batterGridSpacing_m = drum.batter().grid().spacing();
+    figures.carryGridSpacing_m = drum.carry().grid().spacing();
+    figures.batterNodes = drum.batter().grid().numInterior();
+    figures.carryNodes = drum.carry().grid().numInterior();
+    figures.snarePoints = drum.snareContact().numPoints();
+    stats.bench = figures;
+    return stats;
+}
+
+} // namespace snaresim::render

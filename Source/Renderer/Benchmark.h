@@ -1,0 +1,45 @@
+#pragma once
+// --bench: the render timed as the plug-in runs it. The drum comes from
+// makeDrumConfig(params, sampleRate) (EngineSetup.h without --lossless); the audio is rendered
+// in blocks of --block-size samples through Drum::process (the mix), a block being split at a
+// strike's sample as the plug-in splits its block at a MIDI event; each strike is
+// Drum::playNote(38, velocity) (the articulation path); energy tracking is off and denormals
+// are flushed to zero (juce::ScopedNoDenormals, as in the plug-in's processBlock). Every block,
+// its playNote calls included, is timed with std::chrono::steady_clock; the audio statistics
+// and the WAV are handled outside the timed section.
+
+#include "RenderJob.h"
+#include "RenderPlan.h"
+#include "Renderer.h"
+
+#include "Drum.h"
+
+#include <functional>
+#include <span>
+#include <string_view>
+
+namespace snaresim::render
+{
+
+inline constexpr int kBenchNote = 38;                // GM acoustic snare: the centre strike
+inline constexpr double kDefaultScenarioInterval_s = 0.5;
+inline constexpr int kRollStrikes = 16;
+inline constexpr double kRollStart_s = 0.1;
+inline constexpr double kRollInterval_s = 0.06;
+inline constexpr double kRollSeconds = 1.5;
+inline constexpr int kBenchVelocity = 127;
+
+// "default", "roll"; "custom" when --hit / --midi replace the scenario's strikes. Of the job
+// as given on the command line (not of benchmarkJob's result, which holds the strikes as hits).
+std::string_view scenarioName(const RenderJob& job);
+
+// The job as benchmarked: without --hit / --midi, the scenario's strikes; without --seconds,
+// the scenario's length (--bench-short: 0.25 s; with --midi: the usual last note + 2 s).
+RenderJob benchmarkJob(const RenderJob& job);
+
+// Renders the plan on the drum as described above. audio (may be empty) receives every block
+// of the mix. The result's `bench` holds the block timings and the grid figures.
+RenderStats benchmarkDrum(Drum& drum, const RenderPlan& plan, int blockSize,
+                          const std::function<void(std::span<const float>)>& audio);
+
+} // namespace snaresim::render

@@ -1,0 +1,212 @@
+// snaresim-render --bench: the timing report (keys and sane values, never a time limit), the
+// block size, the scenarios, --bench-short, and the options it refuses.
+// Coarse grids (grid_coarseness=2 or 3) keep the renders quick.
+
+#include "RendererTestSupport.h"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+using namespace rendertest;
+
+namespace
+{
+
+std::vector<std::string> with(std::vector<std::string> args, const std::vector<std::string>& more)
+{
+    args.insert(args.end(), more.begin(), more.end());
+    return args;
+}
+
+double number(const juce::var& object, const char* key)
+{
+    const auto& value = object[key];
+    INFO("key " << key);
+    REQUIRE((value.isDouble() || value.isInt() || value.isInt64()));
+    return (double) value;
+}
+
+// Runs a benchmark that must succeed and print one JSON object; returns it.
+juce::var benchJson(const TempDir& dir, const std::vector<std::string>& args)
+{
+    std::string command;
+    for (const auto& a : args)
+        command += " " + a;
+    INFO("snaresim-render --bench --json" << command);
+
+    const auto run = runRenderer(with({ "--bench", "--json" }, args), dir.root() / "capture");
+    INFO("stderr: " << run.err);
+    REQUIRE(run.exitCode == 0);
+    CHECK(run.err.empty());
+    const auto json = parseJson(run.out);
+    REQUIRE(json.isObject());
+    CHECK((bool) json["bench"]);
+    return json;
+}
+
+// Bad input: exit 2, one "error:" line, nothing on stdout, nothing written.
+void requireRejected(const TempDir& dir, const std::vector<std::string>& args, const std::string& mentions)
+{
+    std::string command;
+    for (const auto& a : args)
+        command += " " + a;
+    INFO("snaresim-render" << command);
+
+    const auto before = entries(dir.out());
+    const auto run = runRenderer(args, dir.root() / "capture");
+    INFO("stderr: " << run.err);
+    CHECK(run.exitCode == 2);
+    CHECK(run.err.rfind("snaresim-render: error: ", 0) == 0);
+    CHECK(lines(run.err).size() == 1);
+    CHECK(run.err.find(mentions) != std::string::npos);
+    CHECK(run.out.empty());
+    CHECK(entries(dir.out()) == before);
+}
+
+} // namespace
+
+TEST_CASE("bench: --json reports the block timings with sane values", "[renderer][bench]")
+{
+    TempDir dir;
+    const auto json = benchJson(dir, { "--seconds", "0.25", "--block-size", "32", "--set", "grid_coarseness=2" });
+
+    // 0.25 s at 48 kHz in blocks of 32 samples; the default scenario strikes once, at 0.
+    CHECK(number(json, "samples") == 12000);
+    CHECK(number(json, "block_size") == 32);
+    CHECK(number(json, "blocks") == 375);
+    CHECK(number(json, "strikes") == 1);
+    CHECK(json["bench_scenario"].toString() == "default");
+    CHECK(! (bool) json["bench_short"]);
+    CHECK(json["output"].isVoid()); // no -o: nothing written
+    CHECK(! (bool) json["energy_tracking"]);
+    CHECK(json["mic"].toString() == "mix");
+
+    const double mean = number(json, "mean_block_ms");
+    const double worst = number(json, "worst_block_ms");
+    const double budget = number(json, "block_budget_ms");
+    const double wall = number(json, "wall_seconds");
+    CHECK(mean > 0.0);
+    CHECK(worst >= mean);
+    CHECK(budget == Approx(1000.0 * 32.0 / 48000.0));
+    CHECK(number(json, "worst_block_share") == Approx(worst / budget));
+    CHECK(wall > 0.0);
+    CHECK(mean == Approx(1000.0 * wall / 375.0));
+    CHECK(number(json, "realtime_factor") > 0.0);
+    CHECK(number(json, "realtime_factor") == Approx(0.25 / wall));
+
+    // The model's size: the coarse grid spacing and the wires' contact points.
+    CHECK(number(json, "batter_grid_spacing_m") > 0.0);
+    CHECK(number(json, "batter_grid_spacing_m") < 0.1778);
+    CHECK(number(json, "carry_grid_spacing_m") > 0.0);
+    CHECK(number(json, "batter_nodes") > 0);
+    CHECK(number(json, "carry_nodes") > 0);
+    CHECK(number(json, "snare_points") > 0);
+
+    CHECK(number(json, "nonfinite_samples") == 0);
+    CHECK(number(json, "peak") > 0.0);
+}
+
+TEST_CASE("bench: the block size defaults to 64 and does not change the audio", "[renderer][bench]")
+{
+    TempDir dir;
+    const auto a = dir.out() / "a.wav";
+    const auto b = dir.out() / "b.wav";
+    const std::vector<std::string> quick { "--seconds", "0.2", "--set", "grid_coarseness=3", "--hit", "0.013:127",
+                                           "--hit", "0.05:90" };
+
+    const auto json = benchJson(dir, with({ "-o", a.string() }, quick));
+    CHECK(number(json, "block_size") == 64);
+    CHECK(number(json, "blocks") == 150); // 9600 samples
+    CHECK(number(json, "strikes") == 2);
+    CHECK(json["bench_scenario"].toString() == "custom");
+    CHECK(json["output"].toString().toStdString() == fs::absolute(a).string());
+
+    // Blocks of 7 split differently around the strikes: the same samples.
+    benchJson(dir, with({ "-o", b.string(), "--block-size", "7" }, quick));
+    const auto wavA = readWav(a);
+    const auto wavB = readWav(b);
+    REQUIRE(wavA.opened);
+    REQUIRE(wavB.opened);
+    CHECK(wavA.channels == 1);
+    CHECK(wavA.floatingPoint);
+    CHECK(wavA.length == 9600);
+    CHECK(peakOf(wavA.samples) > 0.0f);
+    CHECK(wavA.samples == wavB.samples);
+}
+
+TEST_CASE("bench: the roll scenario renders 16 strikes in 1.5 s", "[renderer][bench]")
+{
+    TempDir dir;
+    const auto json = benchJson(dir, { "--bench-scenario", "roll", "--set", "grid_coarseness=3" });
+    CHECK(json["bench_scenario"].toString() == "roll");
+    CHECK(number(json, "strikes") == 16);
+    CHECK(number(json, "strikes_outside") == 0);
+    CHECK(number(json, "samples") == 72000);
+    CHECK(number(json, "seconds_rendered") == Approx(1.5));
+    CHECK(number(json, "nonfinite_samples") == 0);
+    CHECK(number(json, "worst_block_ms") >= number(json, "mean_block_ms"));
+}
+
+TEST_CASE("bench: the default scenario strikes every 0.5 s, --hit replaces it", "[renderer][bench]")
+{
+    TempDir dir;
+    const auto every = benchJson(dir, { "--seconds", "1.2", "--set", "grid_coarseness=3" });
+    CHECK(number(every, "strikes") == 3); // 0, 0.5, 1.0
+    CHECK(number(every, "samples") == 57600);
+
+    const auto hit = benchJson(dir, { "--seconds", "0.1", "--hit", "0.02:40", "--set", "grid_coarseness=3" });
+    CHECK(number(hit, "strikes") == 1);
+    CHECK(hit["bench_scenario"].toString() == "custom");
+}
+
+TEST_CASE("bench: --bench-short renders 0.25 s of the default scenario", "[renderer][bench]")
+{
+    TempDir dir;
+    const auto json = benchJson(dir, { "--bench-short" });
+    CHECK((bool) json["bench_short"]);
+    CHECK(json["bench_scenario"].toString() == "default");
+    CHECK(number(json, "samples") == 12000);
+    CHECK(number(json, "strikes") == 1);
+    CHECK(number(json, "block_size") == 64);
+    CHECK(number(json, "nonfinite_samples") == 0);
+
+    // Without --json: a readable summary.
+    const auto run = runRenderer({ "--bench", "--bench-short" }, dir.root() / "capture");
+    INFO("stderr: " << run.err);
+    REQUIRE(run.exitCode == 0);
+    CHECK(run.out.find("realtime factor") != std::string::npos);
+    CHECK(run.out.find("worst") != std::string::npos);
+    CHECK(run.out.find("budget") != std::string::npos);
+    CHECK(entries(dir.out()).empty());
+}
+
+TEST_CASE("bench: bad block sizes and refused options exit with 2", "[renderer][bench][errors]")
+{
+    TempDir dir;
+    const auto wav = (dir.out() / "out.wav").string();
+
+    requireRejected(dir, { "--bench", "--block-size", "0" }, "--block-size");
+    requireRejected(dir, { "--bench", "--block-size", "8193" }, "--block-size");
+    requireRejected(dir, { "--bench", "--block-size", "-64" }, "--block-size");
+    requireRejected(dir, { "--bench", "--block-size", "64.5" }, "--block-size");
+    requireRejected(dir, { "--bench", "--block-size", "big" }, "--block-size");
+    requireRejected(dir, { "--bench", "--block-size" }, "--block-size");
+    requireRejected(dir, { "--bench", "--block-size", "64", "--block-size", "32" }, "more than once");
+    requireRejected(dir, { "--bench", "--bench-scenario", "march" }, "--bench-scenario");
+    requireRejected(dir, { "--bench", "--bench-short", "--seconds", "1" }, "--bench-short");
+    requireRejected(dir, { "--bench", "--bench-short", "--bench-scenario", "roll" }, "--bench-short");
+    requireRejected(dir, { "--bench", "--energy-csv", (dir.out() / "e.csv").string() }, "--energy-csv");
+    requireRejected(dir, { "--bench", "--spectrogram", (dir.out() / "s.png").string() }, "--spectrogram");
+    requireRejected(dir, { "--bench", "--lossless" }, "--lossless");
+    requireRejected(dir, { "--bench", "--mic", "top" }, "--mic");
+    requireRejected(dir, { "--bench=yes" }, "--bench");
+
+    // The benchmark options belong to --bench.
+    requireRejected(dir, { "-o", wav, "--hit", "0:100", "--block-size", "64" }, "--block-size");
+    requireRejected(dir, { "-o", wav, "--hit", "0:100", "--bench-short" }, "--bench-short");
+    requireRejected(dir, { "-o", wav, "--hit", "0:100", "--bench-scenario", "roll" }, "--bench-scenario");
+
+    // The engine's checks still apply.
+    requireRejected(dir, { "--bench", "--set", "grid_coarseness=99" }, "grid_coarseness");
+}
