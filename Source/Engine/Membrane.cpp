@@ -39,6 +39,7 @@ Membrane::Membrane(const MembraneSpec& s, double timeStep, double reserve)
                     first = ix;
                 last = ix;
             }
+        // a disc's row is one run of interior nodes
         if (first >= 0)
         {
             rowBegin[(size_t) iy] = first;
@@ -66,34 +67,58 @@ void Membrane::setCoefficients(double tension, double s0, double s1)
     b1 = -s / q;
 }
 
-// Built for AVX2+FMA and for baseline x86-64; the loader picks the one the CPU runs.
-SNARESIM_VECTOR_CLONES void Membrane::computeFree(double pressure)
+namespace
+{
+// One row of eq. (22): out = c0 w + c1 (4 neighbours of w) + d0 wp + d1 (4 neighbours of wp) + push,
+// for `count` nodes that all lie inside the disc; returns the sum of out.
+SNARESIM_VECTOR_CLONES double updateRow(double* __restrict out, const double* __restrict w, const double* __restrict wp,
+                                        int n, int count, double c0, double c1, double d0, double d1, double push)
+{
+    for (int m = 0; m < count; ++m)
+    {
+        const double nb = w[m - 1] + w[m + 1] + w[m - n] + w[m + n];
+        const double nbp = wp[m - 1] + wp[m + 1] + wp[m - n] + wp[m + n];
+        out[m] = c0 * w[m] + c1 * nb + d0 * wp[m] + d1 * nbp + push;
+    }
+    // the row is in L1 now: sum it in four running sums
+    double acc[4] = {};
+    int m = 0;
+    for (; m + 4 <= count; m += 4)
+        for (int j = 0; j < 4; ++j)
+            acc[j] += out[m + j];
+    for (; m < count; ++m)
+        acc[0] += out[m];
+    return (acc[0] + acc[2]) + (acc[1] + acc[3]);
+}
+} // namespace
+
+// Row by row over the disc's runs of interior nodes (nodes outside stay zero, the fixed rim),
+// summing w^{n+1} for the cavity on the way. updateRow is built for AVX2+FMA and for baseline
+// x86-64; the loader picks the one the CPU runs.
+void Membrane::computeFree(double pressure)
 {
     const int n = g.width();
-    const double* __restrict w = wNow.data();
-    const double* __restrict wp = wPrev.data();
-    const double* __restrict mask = g.mask().data();
-    double* __restrict out = wNext.data();
-    const double c0 = a0, c1 = a1, d0 = b0, d1 = b1;
     const double push = forceGain() * pressure; // eq. (22) with the pressure term, force density p
+    double sum = 0.0;
     for (int iy = 1; iy < n - 1; ++iy)
     {
-        const int base = iy * n;
-        const int end = base + rowEnd[(size_t) iy];
-        for (int i = base + rowBegin[(size_t) iy]; i < end; ++i)
-        {
-            const double nb = w[i - 1] + w[i + 1] + w[i - n] + w[i + n];
-            const double nbp = wp[i - 1] + wp[i + 1] + wp[i - n] + wp[i + n];
-            out[i] = mask[i] * (c0 * w[i] + c1 * nb + d0 * wp[i] + d1 * nbp + push);
-        }
+        const int begin = iy * n + rowBegin[(size_t) iy];
+        const int count = rowEnd[(size_t) iy] - rowBegin[(size_t) iy];
+        if (count > 0)
+            sum += updateRow(wNext.data() + begin, wNow.data() + begin, wPrev.data() + begin, n, count, a0, a1, b0, b1, push);
     }
+    sumNext = sum;
 }
 
 void Membrane::applyForce(const GridDistribution& d, double force)
 {
     const double c = forceGain() * force;
     for (int j = 0; j < d.size; ++j)
-        wNext[(size_t) d.index[(size_t) j]] += c * d.g[(size_t) j];
+    {
+        const double dw = c * d.g[(size_t) j];
+        wNext[(size_t) d.index[(size_t) j]] += dw;
+        sumNext += dw;
+    }
 }
 
 double Membrane::sample(const GridDistribution& d, const std::vector<double>& w) const
@@ -102,25 +127,6 @@ double Membrane::sample(const GridDistribution& d, const std::vector<double>& w)
     for (int j = 0; j < d.size; ++j)
         s += d.g[(size_t) j] * w[(size_t) d.index[(size_t) j]];
     return h * h * s;
-}
-
-double Membrane::sweptVolumeNext() const
-{
-    // Eight running sums, so the additions pipeline and vectorise.
-    const int n = g.width();
-    double acc[8] = {};
-    for (int iy = 1; iy < n - 1; ++iy)
-    {
-        const double* __restrict row = wNext.data() + (size_t) (iy * n);
-        const int end = rowEnd[(size_t) iy];
-        int ix = rowBegin[(size_t) iy];
-        for (; ix + 8 <= end; ix += 8)
-            for (int j = 0; j < 8; ++j)
-                acc[j] += row[ix + j];
-        for (; ix < end; ++ix)
-            acc[0] += row[ix];
-    }
-    return h * h * (((acc[0] + acc[4]) + (acc[1] + acc[5])) + ((acc[2] + acc[6]) + (acc[3] + acc[7])));
 }
 
 double Membrane::energy() const
@@ -172,6 +178,7 @@ void Membrane::advance()
 
 void Membrane::clear()
 {
+    sumNext = 0.0;
     std::fill(wNext.begin(), wNext.end(), 0.0);
     std::fill(wNow.begin(), wNow.end(), 0.0);
     std::fill(wPrev.begin(), wPrev.end(), 0.0);

@@ -50,9 +50,14 @@ public:
 
     // w^{n+1} at one node, for couplings that act node by node.
     double nextAt(int node) const { return wNext[(size_t) node]; }
-    void setNextAt(int node, double value) { wNext[(size_t) node] = value; }
-    // h^2 sum(w) at n+1: the volume swept by the head.
-    double sweptVolumeNext() const;
+    void setNextAt(int node, double value)
+    {
+        sumNext += value - wNext[(size_t) node];
+        wNext[(size_t) node] = value;
+    }
+    // h^2 sum(w) at n+1: the volume swept by the head (summed in computeFree, kept by the
+    // force updates).
+    double sweptVolumeNext() const { return h * h * sumNext; }
 
     // Rotate time levels after a completed step.
     void advance();
@@ -72,6 +77,7 @@ private:
     double q = 1;
     double a0 = 0, a1 = 0, b0 = 0, b1 = 0; // stencil coefficients
     std::vector<int> rowBegin, rowEnd;      // columns holding interior nodes, per row
+    double sumNext = 0.0;                   // sum(w^{n+1})
     std::vector<double> wNext, wNow, wPrev;
 };
 
