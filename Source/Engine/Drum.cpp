@@ -102,9 +102,9 @@ bool Drum::canApplyLive(const DrumConfig& n) const noexcept
     const SnareSpec& a = cfg.snares;
     const SnareSpec& b = n.snares;
     return n.sampleRate_Hz == cfg.sampleRate_Hz && sameGrid(cfg.batter, n.batter) && sameGrid(cfg.carry, n.carry)
-        && a.count == b.count && a.length_m == b.length_m && a.spacing_m == b.spacing_m
+        && a.count == b.count && a.scheme == b.scheme && a.length_m == b.length_m && a.spacing_m == b.spacing_m
         && a.linearDensity_kg_per_m == b.linearDensity_kg_per_m && a.gridTension_N == b.gridTension_N
-        && a.gridSigma1_m2_per_s == b.gridSigma1_m2_per_s && b.tension_N <= (a.gridTension_N > 0.0 ? a.gridTension_N : a.tension_N)
+        && a.gridSigma1_m2_per_s == b.gridSigma1_m2_per_s && a.gridCoarseness == b.gridCoarseness && b.tension_N <= (a.gridTension_N > 0.0 ? a.gridTension_N : a.tension_N)
         && n.cavity.gridShellDepth_m == cfg.cavity.gridShellDepth_m && n.numMallets == cfg.numMallets
         && n.mallet.contactRadius_m <= 0.02;
 }
@@ -156,7 +156,6 @@ void Drum::fillSnapshot(DrumSnapshot& out) const noexcept
     out.snaresEngaged = engaged;
     const int M = wires.intervals();
     out.wireLength_frac = (float) (M * wires.spacing() / (2.0 * R));
-    const auto& gaps = snareCoupling.gaps();
     for (int i = 0; i < out.numWires; ++i)
     {
         out.wireY_frac[(size_t) i] = (float) (wires.wireY(i) / R);
@@ -165,9 +164,8 @@ void Drum::fillSnapshot(DrumSnapshot& out) const noexcept
             const int l = (int) std::lround((double) q / (Q - 1) * M);
             const size_t slot = (size_t) (i * Q + q);
             out.wire[slot] = engaged ? (float) wires.uNow[(size_t) (i * (M + 1) + l)] : 0.0f;
-            // gaps are per interior node: wire i, node l at i * (M - 1) + l - 1
             const bool interior = l > 0 && l < M;
-            out.touching[slot] = engaged && interior && gaps[(size_t) (i * (M - 1) + l - 1)] > 0.0 ? 1 : 0;
+            out.touching[slot] = engaged && interior && snareCoupling.gapAt(i, l) > 0.0 ? 1 : 0;
         }
     }
     out.peakDisplacement = peak;
@@ -216,7 +214,7 @@ double Drum::step()
         fallback = fallback || snare.fallback;
         stats.maxSnareIterations = std::max(stats.maxSnareIterations, snare.iterations);
         stats.snareContacts = snare.contacts;
-        stats.maxSnarePenetration_m = std::max(stats.maxSnarePenetration_m, snareCoupling.maxPenetration());
+        stats.maxSnarePenetration_m = std::max(stats.maxSnarePenetration_m, snare.maxPenetration_m);
     }
     if (iterations > 0)
     {
@@ -301,7 +299,8 @@ void Drum::updateEnergy()
     ledger.mallets_J = kinetic + MalletContact::potentialEnergy(mallets);
     ledger.snares_J = engaged ? wires.energy() + snareCoupling.potentialEnergy() : 0.0;
     ledger.cavity_J = air.energy();
-    ledger.dissipated_J += batterHead.stepLoss() + carryHead.stepLoss() + (engaged ? wires.stepLoss() : 0.0);
+    ledger.dissipated_J += batterHead.stepLoss() + carryHead.stepLoss()
+                         + (engaged ? wires.stepLoss() + snareCoupling.correctionLoss() : 0.0);
 }
 
 void Drum::process(float* out, int n)

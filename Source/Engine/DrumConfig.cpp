@@ -71,6 +71,8 @@ void DrumConfig::validate() const
     require(snares.gridTension_N <= 0.0 || snares.gridTension_N >= snares.tension_N, "the snare grid's design tension must not be below the tension", snares.gridTension_N);
     require(std::isfinite(snares.sigma0_per_s) && snares.sigma0_per_s >= 0.0, "snare sigma0 must be >= 0", snares.sigma0_per_s);
     require(std::isfinite(snares.sigma1_m2_per_s) && snares.sigma1_m2_per_s >= 0.0, "snare sigma1 must be >= 0", snares.sigma1_m2_per_s);
+    require(std::isfinite(snares.gridCoarseness) && snares.gridCoarseness >= 1.0,
+            "snare grid coarseness must be >= 1: a grid finer than the stability bound (eq. 40) is unstable", snares.gridCoarseness);
     require(std::isfinite(snares.stiffness) && snares.stiffness > 0.0, "snare contact stiffness must be positive", snares.stiffness);
     require(std::isfinite(snares.exponent) && snares.exponent >= 1.0 && snares.exponent <= 4.0, "snare contact exponent must be within 1..4", snares.exponent);
     if (snares.count > 0)
@@ -78,7 +80,7 @@ void DrumConfig::validate() const
         const SnareSpec fitted = fittedSnares();
         require(fitted.length_m >= 0.5 * snares.length_m && fitted.length_m >= 0.1,
                 "the snare wires do not fit on the carry head's grid at this sample rate and coarseness", fitted.length_m);
-        const double intervals = fitted.length_m / SnareWires::minimumSpacing(snares, k);
+        const double intervals = fitted.length_m / SnareWires::gridSpacing(snares, k);
         require(intervals >= 4.0, "the snare wire grid would have fewer than 4 intervals at this sample rate", intervals);
         require(intervals <= 4000.0, "the snare wire grid would be too large", intervals);
     }
@@ -160,8 +162,10 @@ DrumConfig mapParameters(const ParameterSet& p, double sampleRate_Hz) noexcept
 
     c.snares.tension_N = p.get(ParamId::snareTension);
     c.snares.gridTension_N = spec(ParamId::snareTension).maxValue;
+    c.snares.gridCoarseness = coarseness;
     c.snares.engaged = p.get(ParamId::snaresEngaged) >= 0.5;
     c.snares.count = (int) std::lround(p.get(ParamId::snareCount));
+    c.snares.scheme = p.get(ParamId::snareSolver) >= 0.5 ? CollisionScheme::newton : CollisionScheme::quadratised;
     c.cavity.shellDepth_m = p.get(ParamId::shellDepth);
     c.cavity.gridShellDepth_m = spec(ParamId::shellDepth).minValue;
     c.cavity.model = p.get(ParamId::airModel) >= 0.5 ? AirModel::cavity : AirModel::none;

@@ -35,6 +35,13 @@ struct MalletSpec
 
 // The snare wires: N lossy strings under the carry head, eq. (12), colliding with it through
 // the power-law potential of eq. (16), both ends attached to it (eq. 17-18).
+// How the snare/carry-head collision of eq. (50) is solved each step.
+enum class CollisionScheme
+{
+    newton,      // the paper's scheme: eq. (30) solved by Newton-Raphson (iterative)
+    quadratised  // energy quadratisation: one linear solve per step (real time; see SnareContact.h)
+};
+
 struct SnareSpec
 {
     int count = 20;
@@ -46,9 +53,11 @@ struct SnareSpec
     double sigma1_m2_per_s = 2.0e-4;
     double gridTension_N = 0.0;         // design values of the wire grid, eq. (40) (0 / < 0: actual)
     double gridSigma1_m2_per_s = -1.0;
+    double gridCoarseness = 1.0;        // h_s = coarseness * h_s,min(eq. 40); >= 1
     double stiffness = 1.0e9;           // kappa_s, N/m per m^beta
     double exponent = 1.5;              // beta (1 ... 1.5; 1.5 is the Hertz exponent)
     bool engaged = true;                // false: thrown off, out of contact
+    CollisionScheme scheme = CollisionScheme::newton;
 };
 
 enum class AirModel

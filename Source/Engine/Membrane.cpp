@@ -1,13 +1,10 @@
 #include "Membrane.h"
 
+#include "VectorClones.h"
+
 #include <algorithm>
 #include <cmath>
 
-#if defined(__x86_64__) && defined(__GNUC__) && ! defined(__clang__)
-#define SNARESIM_VECTOR_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
-#else
-#define SNARESIM_VECTOR_CLONES
-#endif
 
 namespace snaresim
 {

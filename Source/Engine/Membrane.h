@@ -63,6 +63,7 @@ public:
     void advance();
     void clear();
 
+    const std::vector<double>& nextDisplacement() const { return wNext; } // w^{n+1}
     const std::vector<double>& displacement() const { return wNow; }      // w^n
     const std::vector<double>& previousDisplacement() const { return wPrev; } // w^{n-1}
     bool isFinite() const;

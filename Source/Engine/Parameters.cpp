@@ -65,8 +65,11 @@ constexpr std::array<ParameterSpec, kNumParameters> kSpecs {{
       "Distance of the top microphone's point from the centre, as a fraction of the radius", C, "", "output" },
     { P::outputGain, "output_gain", "Output level", "dB", -48.0, 12.0, 0.0, S::linear, false,
       "Output level", C, "", "output" },
-    { P::gridCoarseness, "grid_coarseness", "Quality (grid coarseness)", "", 1.0, 4.0, 1.0, S::linear, true,
-      "Head grid spacing as a multiple of the stability bound (eq. 39); larger is cheaper and duller", C, "", "model" },
+    { P::gridCoarseness, "grid_coarseness", "Quality (grid coarseness)", "", 1.0, 4.0, 2.0, S::linear, true,
+      "Head and snare-wire grid spacing as a multiple of the stability bounds (eq. 39, 40); larger is cheaper and duller", C, "", "model" },
+    { P::snareSolver, "snare_solver", "Snare collision solver", "", 0.0, 1.0, 0.0, S::linear, true,
+      "Snare/head collisions: quadratised (one linear solve per sample, real time) or Newton (the paper's eq. 50, iterative)",
+      K, "quadratised|newton", "model" },
 }};
 
 constexpr bool tableInOrder()

@@ -42,6 +42,7 @@ enum class ParamId : std::size_t
     outputGain,
     // model
     gridCoarseness,
+    snareSolver,
     count
 };
 

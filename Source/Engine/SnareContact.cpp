@@ -1,17 +1,21 @@
 #include "SnareContact.h"
 
 #include "CollisionSolve.h"
+#include "VectorClones.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <cstdint>
+#include <cstring>
 #include <map>
 #include <stdexcept>
 
 namespace snaresim
 {
 
-SnareContact::SnareContact(const SnareSpec& spec, const SnareWires& wires, const Membrane& carry) : hs(wires.spacing())
+SnareContact::SnareContact(const SnareSpec& spec, const SnareWires& wires, const Membrane& carry)
+    : method(spec.scheme), hs(wires.spacing())
 {
     setLaw(spec.stiffness, spec.exponent);
     const auto& grid = carry.grid();
@@ -49,6 +53,45 @@ SnareContact::SnareContact(const SnareSpec& spec, const SnareWires& wires, const
     }
     groupPointBegin.push_back((int) groupPoints.size());
     groupEndBegin.push_back((int) groupEnds.size());
+    // Number the points in group order, so that a group's points are contiguous.
+    std::vector<int> wireNodeByGroup, headNodeByGroup;
+    pointOfWireNode.assign(pointWireNode.size(), 0);
+    pointGroup.assign(pointWireNode.size(), 0);
+    for (size_t q = 0; q < groupPoints.size(); ++q)
+    {
+        const int old = groupPoints[q];
+        wireNodeByGroup.push_back(pointWireNode[(size_t) old]);
+        headNodeByGroup.push_back(pointHeadNode[(size_t) old]);
+        pointOfWireNode[(size_t) old] = (int) q; // old ids run over the wires' interior nodes in order
+        groupPoints[q] = (int) q;
+    }
+    pointWireNode = std::move(wireNodeByGroup);
+    pointHeadNode = std::move(headNodeByGroup);
+    wireInterior = M - 1;
+    groupHasEnds.assign(groupNode.size(), 0);
+    for (size_t g = 0; g < groupNode.size(); ++g)
+        groupHasEnds[g] = groupEndBegin[g + 1] > groupEndBegin[g] ? 1 : 0;
+    for (size_t g = 0; g < groupNode.size(); ++g)
+    {
+        if (groupHasEnds[g] != 0)
+            endGroups.push_back((int) g);
+        for (int p = groupPointBegin[g]; p < groupPointBegin[g + 1]; ++p)
+            pointGroup[(size_t) p] = (int) g;
+    }
+    touchingGroups.assign(groupNode.size() + 1, 0);
+    mayTouch.assign((pointWireNode.size() + 7) / 8 * 8, 0);
+    for (auto* v : { &solveGroups, &slotEnd })
+        v->assign(groupNode.size(), 0);
+    for (auto* v : { &slotW0, &slotCc, &slotS, &slotW })
+        v->assign(groupNode.size(), 0.0);
+    for (auto* v : { &flatPoint, &flatSlot })
+        v->assign(pointWireNode.size(), 0);
+    for (auto* v : { &gq, &alphaQ, &betaQ })
+        v->assign(pointWireNode.size(), 0.0);
+    groupWithoutEnds.assign(groupNode.size(), 0);
+    for (size_t g = 0; g < groupNode.size(); ++g)
+        groupWithoutEnds[g] = groupHasEnds[g] != 0 ? 0 : 1;
+    psiQ.assign(pointWireNode.size(), 0.0);
     rLast.assign(pointWireNode.size(), std::numeric_limits<double>::quiet_NaN());
     xiNext.assign(pointWireNode.size(), 0.0);
     xiNow = xiNext;
@@ -62,9 +105,178 @@ void SnareContact::setLaw(double stiffness, double exponent)
 {
     law.kappa = stiffness;
     law.alpha = exponent;
+    gScale = std::sqrt(0.5 * stiffness * (exponent + 1.0));
+    psiScale = std::sqrt(2.0 * stiffness / (exponent + 1.0));
+    halfExponent = 0.5 * (exponent - 1.0);
+    quarterPower = exponent == 1.5;
 }
 
 SnareSolveResult SnareContact::step(Membrane& carry, SnareWires& wires)
+{
+    return method == CollisionScheme::quadratised ? stepQuadratised(carry, wires) : stepNewton(carry, wires);
+}
+
+void SnareContact::eliminateEnds(int g, const Membrane& carry, const SnareWires& wires, double c, double& W0, double& cc) const
+{
+    // Attached ends (eq. 32a, 48-49): u_e^{n+1} = W. With W = W* + c (H - sum lambda) and
+    // u_e^{n+1} = u_e* + gammaE lambda_e, the ends act on the node as W = W0 + c' H.
+    const double Wfree = carry.nextAt(groupNode[(size_t) g]);
+    const int e0 = groupEndBegin[(size_t) g], e1 = groupEndBegin[(size_t) g + 1];
+    double sumU = 0.0;
+    for (int e = e0; e < e1; ++e)
+        sumU += wires.uNext[(size_t) endWireNode[(size_t) groupEnds[(size_t) e]]];
+    const double invGammaE = 1.0 / wires.endGain(); // end node u^{n+1} per unit force (N), inverted
+    const double G = (e1 - e0) * invGammaE;
+    const double D = ((e1 - e0) * Wfree - sumU) * invGammaE;
+    W0 = Wfree - c * D / (1.0 + c * G);
+    cc = c / (1.0 + c * G);
+}
+
+namespace
+{
+// Free gaps xi* = u - w_c at n+1 for every contact point (two gathers per point; vectorises
+// on AVX2), and per point whether it may touch: xi* > 0, or it touched at n or n-1.
+SNARESIM_VECTOR_CLONES void computeGaps(double* __restrict xi, unsigned char* __restrict mayTouch, const double* __restrict u,
+                                        const double* __restrict w, const double* __restrict xiNow,
+                                        const double* __restrict xiPrev, const int* __restrict wireNode,
+                                        const int* __restrict headNode, int n)
+{
+    for (int p = 0; p < n; ++p)
+    {
+        const double x = u[wireNode[p]] - w[headNode[p]];
+        xi[p] = x;
+        mayTouch[p] = (unsigned char) ((x > 0.0) | (xiNow[p] > 0.0) | (xiPrev[p] > 0.0));
+    }
+}
+
+} // namespace
+
+SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wires)
+{
+    // Free gaps xi* = u* - w_c* at n+1 for every point (no contact or end forces yet): the
+    // prediction g is built from, and xi^{n+1} itself for the points of groups left alone.
+    const int n = (int) pointWireNode.size();
+    computeGaps(xiNext.data(), mayTouch.data(), wires.uNext.data(), carry.nextDisplacement().data(), xiNow.data(),
+                xiPrev.data(), pointWireNode.data(), pointHeadNode.data(), n);
+    // Groups to solve besides those holding wire ends: those with a point that may touch. The
+    // flags are read eight at a time (most are zero); points are numbered group by group.
+    int count = 0, last = -1;
+    for (int p0 = 0; p0 < n; p0 += 8)
+    {
+        std::uint64_t chunk = 0;
+        std::memcpy(&chunk, mayTouch.data() + p0, sizeof chunk); // mayTouch is padded to a multiple of 8
+        if (chunk == 0)
+            continue;
+        for (int p = p0; p < std::min(p0 + 8, n); ++p)
+            if (mayTouch[(size_t) p] != 0)
+            {
+                const int g = pointGroup[(size_t) p];
+                if (g != last && groupHasEnds[(size_t) g] == 0)
+                    touchingGroups[(size_t) count++] = g;
+                last = g;
+            }
+    }
+
+    // Every group to solve this step (ends first) and their points in one flat list, so that
+    // the per-point work of all groups runs as one loop without dependencies between points.
+    int numSolve = 0, numFlat = 0;
+    auto enlist = [&](int g) {
+        solveGroups[(size_t) numSolve] = g;
+        for (int p = groupPointBegin[(size_t) g]; p < groupPointBegin[(size_t) g + 1]; ++p)
+        {
+            flatPoint[(size_t) numFlat] = p;
+            flatSlot[(size_t) numFlat++] = numSolve;
+        }
+        slotEnd[(size_t) numSolve++] = numFlat;
+    };
+    for (int g : endGroups)
+        enlist(g);
+    for (int i = 0; i < count; ++i)
+        enlist(touchingGroups[(size_t) i]);
+
+    const double h = carry.grid().spacing();
+    const double c = carry.forceGain() / (h * h); // w_c^{n+1} per unit force (N) at a node
+    const double gammaS = wires.interiorGain();    // u^{n+1} per unit force density (N/m)
+    double* u = wires.uNext.data();
+
+    // Per group: the head node as the ends leave it, W = W0 + cc H (eq. 48-49).
+    for (int j = 0; j < numSolve; ++j)
+    {
+        const int g = solveGroups[(size_t) j];
+        double W0 = carry.nextAt(groupNode[(size_t) g]), cc = c;
+        if (groupHasEnds[(size_t) g] != 0)
+            eliminateEnds(g, carry, wires, c, W0, cc);
+        slotW0[(size_t) j] = W0;
+        slotCc[(size_t) j] = cc;
+    }
+
+    // Per point: g^n is the slope of psi(xi) = sqrt(2 Phi(xi)) from xi^{n-1} to the prediction
+    // xi* = u* - W0 (no contact force), so psi follows sqrt(2 Phi) closely where the prediction
+    // is good, and g = 0 (no force, psi stays zero) where both are apart.
+    // f = A + B xi^{n+1} with B = g^2/4, A = g psi^{n-1/2} - B xi^{n-1}, and
+    // xi^{n+1} = xi* - gammaS f - cc h_s S, S = sum f over the group. Eliminating xi^{n+1}:
+    // f = alpha - beta S with alpha = (A + B xi*) / (1 + gammaS B), beta = cc h_s B / (1 + gammaS B).
+    for (int k = 0; k < numFlat; ++k)
+    {
+        const int p = flatPoint[(size_t) k], j = flatSlot[(size_t) k];
+        const double a = xiPrev[(size_t) p];
+        const double predicted = u[pointWireNode[(size_t) p]] - slotW0[(size_t) j];
+        const double gp = psiSlope(a, predicted);
+        const double B = 0.25 * gp * gp;
+        const double d = 1.0 / (1.0 + gammaS * B);
+        gq[(size_t) k] = gp;
+        alphaQ[(size_t) k] = (gp * psiQ[(size_t) p] + B * (predicted - a)) * d;
+        betaQ[(size_t) k] = slotCc[(size_t) j] * hs * B * d;
+    }
+
+    // Per group: S = sum alpha / (1 + sum beta), the node and the ends (eq. 32a).
+    for (int j = 0, k0 = 0; j < numSolve; k0 = slotEnd[(size_t) j++])
+    {
+        double sumAlpha = 0.0, sumBeta = 0.0;
+        for (int k = k0; k < slotEnd[(size_t) j]; ++k)
+        {
+            sumAlpha += alphaQ[(size_t) k];
+            sumBeta += betaQ[(size_t) k];
+        }
+        const double S = sumAlpha / (1.0 + sumBeta);
+        const double W = slotW0[(size_t) j] + slotCc[(size_t) j] * hs * S;
+        const int g = solveGroups[(size_t) j];
+        carry.setNextAt(groupNode[(size_t) g], W);
+        for (int e = groupEndBegin[(size_t) g]; e < groupEndBegin[(size_t) g + 1]; ++e)
+            u[endWireNode[(size_t) groupEnds[(size_t) e]]] = W;
+        slotS[(size_t) j] = S;
+        slotW[(size_t) j] = W;
+    }
+
+    // Per point: the force, the wire, the gap and psi at n+1/2.
+    double removed = 0.0, deepest = 0.0;
+    int contacts = 0;
+    for (int k = 0; k < numFlat; ++k)
+    {
+        const int p = flatPoint[(size_t) k], j = flatSlot[(size_t) k];
+        const double f = alphaQ[(size_t) k] - betaQ[(size_t) k] * slotS[(size_t) j];
+        double& ui = u[pointWireNode[(size_t) p]];
+        ui -= gammaS * f;
+        const double xiNew = ui - slotW[(size_t) j];
+        xiNext[(size_t) p] = xiNew;
+        const double next = psiQ[(size_t) p] + 0.5 * gq[(size_t) k] * (xiNew - xiPrev[(size_t) p]);
+        // apart at n+1: psi restarts from zero at the next contact
+        const bool keep = xiNew > 0.0;
+        removed += keep ? 0.0 : next * next;
+        psiQ[(size_t) p] = keep ? next : 0.0;
+        contacts += keep ? 1 : 0;
+        deepest = std::max(deepest, xiNew);
+    }
+    lastCorrection = 0.5 * hs * removed;
+
+    // Points of groups left alone keep xi^{n+1} = xi* <= 0: only solved groups can touch.
+    SnareSolveResult result;
+    result.contacts = contacts;
+    result.maxPenetration_m = deepest;
+    return result;
+}
+
+SnareSolveResult SnareContact::stepNewton(Membrane& carry, SnareWires& wires)
 {
     SnareSolveResult result;
     const double* u = wires.uNext.data();
@@ -96,29 +308,18 @@ SnareSolveResult SnareContact::step(Membrane& carry, SnareWires& wires)
         }
         solveGroup(g, carry, wires, result);
     }
+    result.maxPenetration_m = maxPenetration();
     return result;
 }
 
 void SnareContact::solveGroup(int g, Membrane& carry, SnareWires& wires, SnareSolveResult& result)
 {
     const int node = groupNode[(size_t) g];
-    const double h2 = carry.grid().spacing() * carry.grid().spacing();
-    const double c = carry.forceGain() / h2;          // w_c[j]^{n+1} per unit force (N) at the node
     const double gammaS = wires.interiorGain();       // u^{n+1} per unit force density (N/m)
-    const double gammaE = wires.endGain();            // end node u^{n+1} per unit force (N)
     double* u = wires.uNext.data();
-
-    // Attached ends (eq. 32a, 48-49): u_e^{n+1} = W. With W = W* + c (H - sum lambda) and
-    // u_e^{n+1} = u_e* + gammaE lambda_e, the ends act on the node as W = W0 + c' H.
-    const double Wfree = carry.nextAt(node);
-    double G = 0.0, D = 0.0;
-    for (int e = groupEndBegin[(size_t) g]; e < groupEndBegin[(size_t) g + 1]; ++e)
-    {
-        G += 1.0 / gammaE;
-        D += (Wfree - u[endWireNode[(size_t) groupEnds[(size_t) e]]]) / gammaE;
-    }
-    const double W0 = Wfree - c * D / (1.0 + c * G);
-    const double cc = c / (1.0 + c * G);
+    double W0 = 0.0, cc = 0.0;
+    const double h = carry.grid().spacing();
+    eliminateEnds(g, carry, wires, carry.forceGain() / (h * h), W0, cc);
     const double coupling = cc * hs; // node response to a contact force density at any of its points
 
     // Collisions (eq. 50) restricted to this node: r_m + gammaS psi_m + coupling sum psi + b_m = 0,
@@ -310,6 +511,8 @@ double SnareContact::solveFallback(int m, double gammaS, double coupling)
 
 double SnareContact::potentialEnergy() const
 {
+    if (method == CollisionScheme::quadratised)
+        return quadratisedEnergy();
     double e = 0.0;
     for (size_t i = 0; i < xiNext.size(); ++i)
         e += law.phi(xiNext[i]) + law.phi(xiNow[i]);
@@ -318,6 +521,8 @@ double SnareContact::potentialEnergy() const
 
 double SnareContact::potentialEnergyBeforeStep() const
 {
+    if (method == CollisionScheme::quadratised)
+        return quadratisedEnergy(); // psi is stored at the half step: the same value before and after
     double e = 0.0;
     for (size_t i = 0; i < xiNow.size(); ++i)
         e += law.phi(xiNow[i]) + law.phi(xiPrev[i]);
@@ -353,8 +558,24 @@ void SnareContact::layOnHead(const Membrane& carry, SnareWires& wires)
     clear();
 }
 
+double SnareContact::quadratisedEnergy() const
+{
+    double e = 0.0;
+    for (double v : psiQ)
+        e += v * v;
+    return 0.5 * hs * e;
+}
+
+double SnareContact::gapAt(int wire, int l) const
+{
+    return xiNow[(size_t) pointOfWireNode[(size_t) (wire * wireInterior + l - 1)]];
+}
+
 void SnareContact::clear()
 {
+    numTouchingGroups = 0;
+    std::fill(psiQ.begin(), psiQ.end(), 0.0);
+    lastCorrection = 0.0;
     std::fill(rLast.begin(), rLast.end(), std::numeric_limits<double>::quiet_NaN());
     std::fill(xiNext.begin(), xiNext.end(), 0.0);
     std::fill(xiNow.begin(), xiNow.end(), 0.0);

@@ -8,11 +8,28 @@
 // block diagonal, one block per head node. A block is gamma_s I + c' h_s 1 1^T (the string's
 // own response plus the shared node), so its Newton step is a Sherman-Morrison solve, O(size).
 // An attached end at the node is eliminated first: it only stiffens the node (c -> c').
+//
+// Two schemes for the collision term (SnareSpec::scheme):
+// - newton: the paper's eq. (30), f = (Phi(xi^{n+1}) - Phi(xi^{n-1})) / (xi^{n+1} - xi^{n-1}),
+//   solved per node group by Newton-Raphson; the energy term is h_s sum mu_t+ Phi(xi).
+// - quadratised (energy quadratisation, Ducceschi et al., JASA 149(5), 2021): each point keeps
+//   psi ~ sqrt(2 Phi(xi)) at half steps and, with a slope g^n known before the step,
+//     f = g mu_t+ psi^{n-1/2},  psi^{n+1/2} = psi^{n-1/2} + (g/2)(xi^{n+1} - xi^{n-1}),
+//   which is linear in xi^{n+1}: a node group is solved in one Sherman-Morrison pass, no
+//   iteration. Its energy term is h_s sum (psi^{n+1/2})^2 / 2, and f (xi^{n+1} - xi^{n-1}) / 2 is
+//   exactly its change, so the drum's energy identity holds as with Newton, for any g. The
+//   tangent g = psi'(xi^n) lets psi fall far behind sqrt(2 Phi) when a wire arrives fast (a
+//   contact begins with xi^n near 0 and a small g), and the wires then sink into the head; we
+//   take g as the secant of psi from xi^{n-1} to the free prediction of xi^{n+1}, which is exact
+//   when the prediction is. psi is evolved, not recomputed, so some can be left when a point
+//   separates: it is reset to zero there and the energy removed, h_s psi^2 / 2 >= 0, is booked
+//   as a loss (correctionLoss()), so the scheme stays passive and the ledger balances.
 
 #include "Membrane.h"
 #include "PowerLawPotential.h"
 #include "SnareWires.h"
 
+#include <cmath>
 #include <vector>
 
 namespace snaresim
@@ -23,6 +40,7 @@ struct SnareSolveResult
     int iterations = 0;     // largest Newton iteration count over the node groups this step
     int contacts = 0;       // contact points touching the head at n+1
     bool fallback = false;  // some group needed the bracketed fallback
+    double maxPenetration_m = 0.0; // largest xi^{n+1}, 0 when apart
 };
 
 class SnareContact
@@ -34,6 +52,8 @@ public:
 
     SnareContact(const SnareSpec& spec, const SnareWires& wires, const Membrane& carry);
 
+    CollisionScheme scheme() const { return method; }
+
     void setLaw(double stiffness, double exponent);
 
     // After the free updates of the carry head and the wires: solve the collisions and the
@@ -44,9 +64,15 @@ public:
     double potentialEnergy() const;
     double potentialEnergyBeforeStep() const; // at n-1/2
     double maxPenetration() const; // largest xi^{n+1} (m), 0 when apart
+    // Energy the quadratised scheme removed in the last step by resetting psi of separated points.
+    double correctionLoss() const { return lastCorrection; }
+    double quadratisedEnergy() const; // h_s sum psi^2 / 2
     int numPoints() const { return (int) pointWireNode.size(); }
-    // xi = u - w_c per contact point at the latest completed step (after Drum::step)
+    // xi = u - w_c per contact point at the latest completed step (after Drum::step), in the
+    // coupling's own order (grouped by head node)
     const std::vector<double>& gaps() const { return xiNow; }
+    // the same gap for interior node l (1 ... M-1) of wire i
+    double gapAt(int wire, int l) const;
 
     void advance();
     // Lay the wires on the carry head as it is at n and n-1 (snares engaged): every node
@@ -55,13 +81,42 @@ public:
     void clear();
 
 private:
+    SnareSolveResult stepNewton(Membrane& carry, SnareWires& wires);
+    SnareSolveResult stepQuadratised(Membrane& carry, SnareWires& wires);
+    // psi(xi) = sqrt(2 Phi(xi)) = sqrt(2 kappa / (beta + 1)) [xi]_+^((beta + 1) / 2)
+    double psiOf(double x) const
+    {
+        return x > 0.0 ? psiScale * (quarterPower ? x * std::sqrt(std::sqrt(x)) : std::pow(x, halfExponent + 1.0)) : 0.0;
+    }
+    // The slope g of psi from a = xi^{n-1} to b = xi*: the secant where a contact begins or ends,
+    // the tangent at the midpoint while both touch (equal to the secant to O((b - a)^2)).
+    double psiSlope(double from, double to) const
+    {
+        if (from > 0.0 && to > 0.0)
+        {
+            const double mid = 0.5 * (from + to);
+            return gScale * (quarterPower ? std::sqrt(std::sqrt(mid)) : std::pow(mid, halfExponent));
+        }
+        if (from <= 0.0 && to <= 0.0)
+            return 0.0;
+        return (psiOf(to) - psiOf(from)) / (to - from);
+    }
+    // The ends of a group eliminated (eq. 48-49): W = W0 + cc H for a total contact force H.
+    // c: w_c^{n+1} at a node per unit force (N) there.
+    void eliminateEnds(int group, const Membrane& carry, const SnareWires& wires, double c, double& W0, double& cc) const;
     void solveGroup(int group, Membrane& carry, SnareWires& wires, SnareSolveResult& result);
     bool solveGroupNewton(int m, double gammaS, double coupling, int& iterations);
     bool solveGroupReduced(int m, double gammaS, double coupling, int& iterations);
     double solveFallback(int m, double gammaS, double coupling);
 
     PowerLawPotential law;
+    CollisionScheme method;
     double hs;
+    double gScale = 0.0;        // sqrt(kappa (beta + 1) / 2)
+    double psiScale = 0.0;      // sqrt(2 kappa / (beta + 1))
+    double halfExponent = 0.25; // (beta - 1) / 2
+    bool quarterPower = true;   // beta = 1.5: g = gScale xi^(1/4)
+    double lastCorrection = 0.0;
     int firstNode = 0;
     // contact points: wire-array index of the node, head node, grouped by head node (CSR)
     std::vector<int> pointWireNode, pointHeadNode;
@@ -70,9 +125,22 @@ private:
     std::vector<int> groupPoints, groupEnds;
     std::vector<double> xiNext, xiNow, xiPrev;
     std::vector<double> rLast; // last step's root per point (NaN when it was not solved): Newton's start
+    std::vector<double> psiQ;  // quadratised: psi at n+1/2 (after step) / n-1/2 (before), per point
+    std::vector<unsigned char> groupHasEnds;
+    std::vector<int> endGroups;              // groups holding wire ends (solved every step)
+    std::vector<int> touchingGroups;         // quadratised: other groups with a point at xi^n > 0
+    std::vector<unsigned char> groupWithoutEnds;
+    int numTouchingGroups = 0;
+    std::vector<int> pointGroup;             // group of each point
+    std::vector<unsigned char> mayTouch;     // quadratised: per point, xi*, xi^n or xi^{n-1} > 0
+    std::vector<int> pointOfWireNode;        // wire i, interior node l -> point (i * (M - 1) + l - 1)
+    int wireInterior = 0;                    // interior nodes per wire, M - 1
     // per-group scratch (sized for the largest group)
     std::vector<int> active;
     std::vector<double> a, b, r, psi, dpsi, phiA;
+    // quadratised: the groups solved this step (slots) and their points in one flat list
+    std::vector<int> solveGroups, slotEnd, flatPoint, flatSlot;
+    std::vector<double> slotW0, slotCc, slotS, slotW, gq, alphaQ, betaQ;
 };
 
 } // namespace snaresim

@@ -1,5 +1,7 @@
 #include "SnareWires.h"
 
+#include "VectorClones.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -20,7 +22,7 @@ SnareWires::SnareWires(const SnareSpec& s, double, double timeStep)
       maxT(s.gridTension_N > 0.0 ? s.gridTension_N : s.tension_N),
       maxSigma1(s.gridSigma1_m2_per_s >= 0.0 ? s.gridSigma1_m2_per_s : s.sigma1_m2_per_s)
 {
-    M = std::max(2, (int) std::floor(length / minimumSpacing(s, k)));
+    M = std::max(2, (int) std::floor(length / gridSpacing(s, k)));
     hs = length / M;
     y0 = -0.5 * (numWires - 1) * pitch;
     const size_t n = (size_t) numWires * (size_t) (M + 1);
@@ -50,18 +52,21 @@ void SnareWires::setCoefficients(double tension, double s0, double s1)
     f1 = -2.0 * s / q;
 }
 
-void SnareWires::computeFree()
+SNARESIM_VECTOR_CLONES void SnareWires::computeFree()
 {
-    const int stride = M + 1;
+    // Every wire's interior in one pass over the flat array (it also visits the end nodes with
+    // the wrong stencil, corrected after), then the ends with their half-cell stencil.
+    const int total = numWires * (M + 1);
+    const double* __restrict u = uNow.data();
+    const double* __restrict up = uPrev.data();
+    double* __restrict out = uNext.data();
+    for (int l = 1; l < total - 1; ++l)
+        out[l] = a0 * u[l] + a1 * (u[l - 1] + u[l + 1]) + b0 * up[l] + b1 * (up[l - 1] + up[l + 1]);
     for (int i = 0; i < numWires; ++i)
     {
-        const double* __restrict u = uNow.data() + (size_t) i * (size_t) stride;
-        const double* __restrict up = uPrev.data() + (size_t) i * (size_t) stride;
-        double* __restrict out = uNext.data() + (size_t) i * (size_t) stride;
-        for (int l = 1; l < M; ++l)
-            out[l] = a0 * u[l] + a1 * (u[l - 1] + u[l + 1]) + b0 * up[l] + b1 * (up[l - 1] + up[l + 1]);
-        out[0] = e0 * u[0] + e1 * u[1] + f0 * up[0] + f1 * up[1];
-        out[M] = e0 * u[M] + e1 * u[M - 1] + f0 * up[M] + f1 * up[M - 1];
+        const int first = i * (M + 1), last = first + M;
+        out[first] = e0 * u[first] + e1 * u[first + 1] + f0 * up[first] + f1 * up[first + 1];
+        out[last] = e0 * u[last] + e1 * u[last - 1] + f0 * up[last] + f1 * up[last - 1];
     }
 }
 

@@ -21,6 +21,8 @@ public:
 
     // Grid spacing from eq. (40) for the design tension and sigma1 (before fitting to the length).
     static double minimumSpacing(const SnareSpec& spec, double timeStep_s);
+    // The spacing the grid is built for: minimumSpacing times the coarseness factor.
+    static double gridSpacing(const SnareSpec& spec, double timeStep_s) { return spec.gridCoarseness * minimumSpacing(spec, timeStep_s); }
 
     int count() const { return numWires; }
     int intervals() const { return M; }           // nodes per wire: M + 1

@@ -1,5 +1,6 @@
 // The one parameter declaration: consistent, in range, and mapped onto the physics.
 
+#include "Drum.h"
 #include "DrumConfig.h"
 #include "Presets.h"
 
@@ -48,6 +49,29 @@ TEST_CASE("the defaults give the physics-notes drum", "[parameters]")
     CHECK(c.batter.sigma0_per_s == Approx(3.0 * std::log(10.0) / (4.0 * std::pow(0.15 / 4.0, 0.25))));
     // The grid is designed for the largest tension the control allows.
     CHECK(c.batter.gridTension_N_per_m == spec(ParamId::batterTension).maxValue);
+    // Real time by default: the quadratised snare solve, heads and wires at twice the bound.
+    CHECK(c.snares.scheme == CollisionScheme::quadratised);
+    CHECK(c.batter.gridCoarseness == 2.0);
+    CHECK(c.snares.gridCoarseness == 2.0);
+}
+
+TEST_CASE("the quality and solver settings reach the heads, the wires and the snare solve", "[parameters]")
+{
+    ParameterSet p;
+    p.set(ParamId::snareSolver, 1.0);
+    p.set(ParamId::gridCoarseness, 3.0);
+    const DrumConfig c = makeDrumConfig(p, 48000.0);
+    CHECK(c.snares.scheme == CollisionScheme::newton);
+    CHECK(c.carry.gridCoarseness == 3.0);
+    CHECK(c.snares.gridCoarseness == 3.0);
+    // The wire grid is the stability bound of eq. (40) times the coarseness.
+    const double k = 1.0 / 48000.0;
+    const Drum coarse(c);
+    CHECK(coarse.snareWires().spacing() >= 3.0 * SnareWires::minimumSpacing(c.snares, k));
+    p.set(ParamId::gridCoarseness, 1.0);
+    const Drum fine(makeDrumConfig(p, 48000.0));
+    CHECK(fine.snareWires().spacing() < 1.1 * SnareWires::minimumSpacing(c.snares, k));
+    CHECK(fine.snareContact().numPoints() > 2 * coarse.snareContact().numPoints());
 }
 
 TEST_CASE("presets are found by name and apply their values", "[parameters]")

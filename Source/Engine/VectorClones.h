@@ -1,0 +1,10 @@
+#pragma once
+// SNARESIM_VECTOR_CLONES: build a hot loop twice, for x86-64-v3 (AVX2 + FMA) and for the
+// baseline x86-64, and let the loader pick the one the CPU runs. Shipped binaries stay generic
+// (no -march=native) and still use the wide vectors where the CPU has them.
+
+#if defined(__x86_64__) && defined(__GNUC__) && ! defined(__clang__)
+#define SNARESIM_VECTOR_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
+#else
+#define SNARESIM_VECTOR_CLONES
+#endif
