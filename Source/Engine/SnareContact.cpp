@@ -56,7 +56,6 @@ SnareContact::SnareContact(const SnareSpec& spec, const SnareWires& wires, const
     // Number the points in group order, so that a group's points are contiguous.
     std::vector<int> wireNodeByGroup, headNodeByGroup;
     pointOfWireNode.assign(pointWireNode.size(), 0);
-    pointGroup.assign(pointWireNode.size(), 0);
     for (size_t q = 0; q < groupPoints.size(); ++q)
     {
         const int old = groupPoints[q];
@@ -72,14 +71,9 @@ SnareContact::SnareContact(const SnareSpec& spec, const SnareWires& wires, const
     for (size_t g = 0; g < groupNode.size(); ++g)
         groupHasEnds[g] = groupEndBegin[g + 1] > groupEndBegin[g] ? 1 : 0;
     for (size_t g = 0; g < groupNode.size(); ++g)
-    {
-        if (groupHasEnds[g] != 0)
-            endGroups.push_back((int) g);
-        for (int p = groupPointBegin[g]; p < groupPointBegin[g + 1]; ++p)
-            pointGroup[(size_t) p] = (int) g;
-    }
-    touchingGroups.assign(groupNode.size() + 1, 0);
-    mayTouch.assign((pointWireNode.size() + 7) / 8 * 8, 0);
+        (groupHasEnds[g] != 0 ? endGroups : openGroups).push_back((int) g);
+    mayTouch.assign(pointWireNode.size() + 8, 0);
+    touchHistory.assign(pointWireNode.size(), 0);
     for (auto* v : { &solveGroups, &slotEnd })
         v->assign(groupNode.size(), 0);
     for (auto* v : { &slotW0, &slotCc, &slotS, &slotW })
@@ -88,9 +82,6 @@ SnareContact::SnareContact(const SnareSpec& spec, const SnareWires& wires, const
         v->assign(pointWireNode.size(), 0);
     for (auto* v : { &gq, &alphaQ, &betaQ })
         v->assign(pointWireNode.size(), 0.0);
-    groupWithoutEnds.assign(groupNode.size(), 0);
-    for (size_t g = 0; g < groupNode.size(); ++g)
-        groupWithoutEnds[g] = groupHasEnds[g] != 0 ? 0 : 1;
     psiQ.assign(pointWireNode.size(), 0.0);
     rLast.assign(pointWireNode.size(), std::numeric_limits<double>::quiet_NaN());
     xiNext.assign(pointWireNode.size(), 0.0);
@@ -135,20 +126,46 @@ void SnareContact::eliminateEnds(int g, const Membrane& carry, const SnareWires&
 namespace
 {
 // Free gaps xi* = u - w_c at n+1 for every contact point (two gathers per point; vectorises
-// on AVX2), and per point whether it may touch: xi* > 0, or it touched at n or n-1.
+// on AVX2), and per point whether it may touch: xi* > 0, or it touched at n or n-1 (history).
 SNARESIM_VECTOR_CLONES void computeGaps(double* __restrict xi, unsigned char* __restrict mayTouch, const double* __restrict u,
-                                        const double* __restrict w, const double* __restrict xiNow,
-                                        const double* __restrict xiPrev, const int* __restrict wireNode,
-                                        const int* __restrict headNode, int n)
+                                        const double* __restrict w, const unsigned char* __restrict history,
+                                        const int* __restrict wireNode, const int* __restrict headNode, int n)
 {
     for (int p = 0; p < n; ++p)
     {
         const double x = u[wireNode[p]] - w[headNode[p]];
         xi[p] = x;
-        mayTouch[p] = (unsigned char) ((x > 0.0) | (xiNow[p] > 0.0) | (xiPrev[p] > 0.0));
+        mayTouch[p] = (unsigned char) ((x > 0.0 ? 1 : 0) | history[p]);
     }
 }
 
+// The per-point coefficients of the quadratised solve for the Hertz exponent (beta = 1.5, so
+// psi = psiScale xi^(5/4) and psi' = gScale xi^(1/4)), branch-free so that it vectorises:
+// g is the tangent at the midpoint while xi^{n-1} and xi* both touch, else the secant.
+SNARESIM_VECTOR_CLONES void hertzCoefficients(int count, const int* __restrict flatPoint, const int* __restrict flatSlot,
+                                              const int* __restrict wireNode, const double* __restrict xiPrev,
+                                              const double* __restrict u, const double* __restrict psi,
+                                              const double* __restrict W0, const double* __restrict cc, double hs,
+                                              double gScale, double psiScale, double gammaS, double* __restrict gq,
+                                              double* __restrict alpha, double* __restrict beta)
+{
+    for (int k = 0; k < count; ++k)
+    {
+        const int p = flatPoint[k], j = flatSlot[k];
+        const double a = xiPrev[p];
+        const double b = u[wireNode[p]] - W0[j];
+        const double ap = a > 0.0 ? a : 0.0, bp = b > 0.0 ? b : 0.0;
+        const double span = b - a;
+        const double secant = psiScale * (bp * std::sqrt(std::sqrt(bp)) - ap * std::sqrt(std::sqrt(ap))) / (span != 0.0 ? span : 1.0);
+        const double tangent = gScale * std::sqrt(std::sqrt(0.5 * (ap + bp)));
+        const double g = (a > 0.0) & (b > 0.0) ? tangent : secant;
+        const double B = 0.25 * g * g;
+        const double d = 1.0 / (1.0 + gammaS * B);
+        gq[k] = g;
+        alpha[k] = (g * psi[p] + B * (b - a)) * d;
+        beta[k] = cc[j] * hs * B * d;
+    }
+}
 } // namespace
 
 SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wires)
@@ -156,29 +173,13 @@ SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wire
     // Free gaps xi* = u* - w_c* at n+1 for every point (no contact or end forces yet): the
     // prediction g is built from, and xi^{n+1} itself for the points of groups left alone.
     const int n = (int) pointWireNode.size();
-    computeGaps(xiNext.data(), mayTouch.data(), wires.uNext.data(), carry.nextDisplacement().data(), xiNow.data(),
-                xiPrev.data(), pointWireNode.data(), pointHeadNode.data(), n);
-    // Groups to solve besides those holding wire ends: those with a point that may touch. The
-    // flags are read eight at a time (most are zero); points are numbered group by group.
-    int count = 0, last = -1;
-    for (int p0 = 0; p0 < n; p0 += 8)
-    {
-        std::uint64_t chunk = 0;
-        std::memcpy(&chunk, mayTouch.data() + p0, sizeof chunk); // mayTouch is padded to a multiple of 8
-        if (chunk == 0)
-            continue;
-        for (int p = p0; p < std::min(p0 + 8, n); ++p)
-            if (mayTouch[(size_t) p] != 0)
-            {
-                const int g = pointGroup[(size_t) p];
-                if (g != last && groupHasEnds[(size_t) g] == 0)
-                    touchingGroups[(size_t) count++] = g;
-                last = g;
-            }
-    }
+    computeGaps(xiNext.data(), mayTouch.data(), wires.uNext.data(), carry.nextDisplacement().data(), touchHistory.data(),
+                pointWireNode.data(), pointHeadNode.data(), n);
 
-    // Every group to solve this step (ends first) and their points in one flat list, so that
-    // the per-point work of all groups runs as one loop without dependencies between points.
+    // The groups to solve (those holding wire ends first, then those with a point that may
+    // touch) and their points in one flat list, so that the per-point work of all groups runs
+    // as one loop without dependencies between points. A group's points are consecutive, so
+    // its flags are read at once (eight bytes; mayTouch is padded).
     int numSolve = 0, numFlat = 0;
     auto enlist = [&](int g) {
         solveGroups[(size_t) numSolve] = g;
@@ -191,8 +192,23 @@ SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wire
     };
     for (int g : endGroups)
         enlist(g);
-    for (int i = 0; i < count; ++i)
-        enlist(touchingGroups[(size_t) i]);
+    const unsigned char* flags = mayTouch.data();
+    for (int g : openGroups)
+    {
+        const int p0 = groupPointBegin[(size_t) g], size = groupPointBegin[(size_t) g + 1] - p0;
+        bool any = false;
+        if (size <= 8)
+        {
+            std::uint64_t word = 0;
+            std::memcpy(&word, flags + p0, sizeof word);
+            any = (word & (~std::uint64_t { 0 } >> (64 - 8 * size))) != 0;
+        }
+        else
+            for (int p = p0; p < p0 + size; ++p)
+                any = any || flags[p] != 0;
+        if (any)
+            enlist(g);
+    }
 
     const double h = carry.grid().spacing();
     const double c = carry.forceGain() / (h * h); // w_c^{n+1} per unit force (N) at a node
@@ -216,18 +232,22 @@ SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wire
     // f = A + B xi^{n+1} with B = g^2/4, A = g psi^{n-1/2} - B xi^{n-1}, and
     // xi^{n+1} = xi* - gammaS f - cc h_s S, S = sum f over the group. Eliminating xi^{n+1}:
     // f = alpha - beta S with alpha = (A + B xi*) / (1 + gammaS B), beta = cc h_s B / (1 + gammaS B).
-    for (int k = 0; k < numFlat; ++k)
-    {
-        const int p = flatPoint[(size_t) k], j = flatSlot[(size_t) k];
-        const double a = xiPrev[(size_t) p];
-        const double predicted = u[pointWireNode[(size_t) p]] - slotW0[(size_t) j];
-        const double gp = psiSlope(a, predicted);
-        const double B = 0.25 * gp * gp;
-        const double d = 1.0 / (1.0 + gammaS * B);
-        gq[(size_t) k] = gp;
-        alphaQ[(size_t) k] = (gp * psiQ[(size_t) p] + B * (predicted - a)) * d;
-        betaQ[(size_t) k] = slotCc[(size_t) j] * hs * B * d;
-    }
+    if (quarterPower)
+        hertzCoefficients(numFlat, flatPoint.data(), flatSlot.data(), pointWireNode.data(), xiPrev.data(), u, psiQ.data(),
+                          slotW0.data(), slotCc.data(), hs, gScale, psiScale, gammaS, gq.data(), alphaQ.data(), betaQ.data());
+    else
+        for (int k = 0; k < numFlat; ++k)
+        {
+            const int p = flatPoint[(size_t) k], j = flatSlot[(size_t) k];
+            const double a = xiPrev[(size_t) p];
+            const double predicted = u[pointWireNode[(size_t) p]] - slotW0[(size_t) j];
+            const double gp = psiSlope(a, predicted);
+            const double B = 0.25 * gp * gp;
+            const double d = 1.0 / (1.0 + gammaS * B);
+            gq[(size_t) k] = gp;
+            alphaQ[(size_t) k] = (gp * psiQ[(size_t) p] + B * (predicted - a)) * d;
+            betaQ[(size_t) k] = slotCc[(size_t) j] * hs * B * d;
+        }
 
     // Per group: S = sum alpha / (1 + sum beta), the node and the ends (eq. 32a).
     for (int j = 0, k0 = 0; j < numSolve; k0 = slotEnd[(size_t) j++])
@@ -262,6 +282,7 @@ SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wire
         const double next = psiQ[(size_t) p] + 0.5 * gq[(size_t) k] * (xiNew - xiPrev[(size_t) p]);
         // apart at n+1: psi restarts from zero at the next contact
         const bool keep = xiNew > 0.0;
+        touchHistory[(size_t) p] = (unsigned char) (((touchHistory[(size_t) p] << 1) | (keep ? 1 : 0)) & 3);
         removed += keep ? 0.0 : next * next;
         psiQ[(size_t) p] = keep ? next : 0.0;
         contacts += keep ? 1 : 0;
@@ -573,7 +594,7 @@ double SnareContact::gapAt(int wire, int l) const
 
 void SnareContact::clear()
 {
-    numTouchingGroups = 0;
+    std::fill(touchHistory.begin(), touchHistory.end(), 0);
     std::fill(psiQ.begin(), psiQ.end(), 0.0);
     lastCorrection = 0.0;
     std::fill(rLast.begin(), rLast.end(), std::numeric_limits<double>::quiet_NaN());

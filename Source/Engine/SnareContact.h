@@ -128,11 +128,9 @@ private:
     std::vector<double> psiQ;  // quadratised: psi at n+1/2 (after step) / n-1/2 (before), per point
     std::vector<unsigned char> groupHasEnds;
     std::vector<int> endGroups;              // groups holding wire ends (solved every step)
-    std::vector<int> touchingGroups;         // quadratised: other groups with a point at xi^n > 0
-    std::vector<unsigned char> groupWithoutEnds;
-    int numTouchingGroups = 0;
-    std::vector<int> pointGroup;             // group of each point
-    std::vector<unsigned char> mayTouch;     // quadratised: per point, xi*, xi^n or xi^{n-1} > 0
+    std::vector<int> openGroups;             // groups without wire ends
+    std::vector<unsigned char> mayTouch;     // quadratised: per point, xi*, xi^n or xi^{n-1} > 0 (padded by 8)
+    std::vector<unsigned char> touchHistory; // quadratised: bit 0 xi^{n+1} > 0, bit 1 xi^n > 0 (after a step)
     std::vector<int> pointOfWireNode;        // wire i, interior node l -> point (i * (M - 1) + l - 1)
     int wireInterior = 0;                    // interior nodes per wire, M - 1
     // per-group scratch (sized for the largest group)

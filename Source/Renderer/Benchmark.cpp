@@ -45,89 +45,112 @@ RenderJob benchmarkJob(const RenderJob& job)
     return result;
 }
 
-RenderStats benchmarkDrum(Drum& drum, const RenderPlan& plan, int blockSize,
-                          const std::function<void(std::span<const float>)>& audio)
+RenderStats benchmarkDrum(const std::function<std::unique_ptr<Drum>()>& makeDrum, const RenderPlan& plan,
+                          int blockSize, int repeats, const std::function<void(std::span<const float>)>& audio)
 {
     using Clock = std::chrono::steady_clock;
 
     // The plug-in's processBlock runs with denormals flushed to zero; so does the benchmark.
     const juce::ScopedNoDenormals noDenormals;
 
-    drum.setEnergyTracking(false);
-    drum.resetStats();
-
     std::vector<float> block((std::size_t) blockSize);
-    const auto& strikes = plan.strikes;
-    std::size_t nextStrike = 0;
+    const auto numBlocks = (std::size_t) ((plan.numSamples + blockSize - 1) / blockSize);
+    std::vector<Clock::duration> fastest(numBlocks, Clock::duration::max());
+    Clock::duration rawWorst {}, slowestRun {};
 
-    Clock::duration total {}, worst {};
-    std::int64_t blocks = 0;
-
+    RenderStats stats;
+    BenchFigures figures;
     double peak = 0.0, sumSquares = 0.0;
     std::int64_t finite = 0, nonfinite = 0;
 
-    for (std::int64_t position = 0; position < plan.numSamples;)
+    for (int run = 0; run < repeats; ++run)
     {
-        const int n = (int) std::min<std::int64_t>(blockSize, plan.numSamples - position);
-        const auto start = Clock::now();
+        const auto drum = makeDrum(); // a new drum each run: every run computes the same blocks
+        drum->setEnergyTracking(false);
+        drum->resetStats();
+        const auto& strikes = plan.strikes;
+        std::size_t nextStrike = 0, index = 0;
+        Clock::duration runTotal {};
 
-        // As the plug-in does with MIDI events: render up to the strike's sample, play the
-        // note, render on.
-        int done = 0;
-        while (done < n)
+        for (std::int64_t position = 0; position < plan.numSamples; ++index)
         {
-            while (nextStrike < strikes.size() && strikes[nextStrike].sample <= position + done)
-                drum.playNote(kBenchNote, strikes[nextStrike++].velocity);
-            int until = n;
-            if (nextStrike < strikes.size() && strikes[nextStrike].sample < position + n)
-                until = (int) (strikes[nextStrike].sample - position);
-            drum.process(block.data() + done, until - done);
-            done = until;
-        }
+            const int n = (int) std::min<std::int64_t>(blockSize, plan.numSamples - position);
+            const auto start = Clock::now();
 
-        const auto elapsed = Clock::now() - start;
-        total += elapsed;
-        worst = std::max(worst, elapsed);
-        ++blocks;
-
-        const std::span<const float> samples(block.data(), (std::size_t) n);
-        for (const float x : samples)
-        {
-            if (! std::isfinite(x))
+            // As the plug-in does with MIDI events: render up to the strike's sample, play the
+            // note, render on.
+            int done = 0;
+            while (done < n)
             {
-                ++nonfinite;
-                continue;
+                while (nextStrike < strikes.size() && strikes[nextStrike].sample <= position + done)
+                    drum->playNote(kBenchNote, strikes[nextStrike++].velocity);
+                int until = n;
+                if (nextStrike < strikes.size() && strikes[nextStrike].sample < position + n)
+                    until = (int) (strikes[nextStrike].sample - position);
+                drum->process(block.data() + done, until - done);
+                done = until;
             }
-            peak = std::max(peak, (double) std::abs(x));
-            sumSquares += (double) x * (double) x;
-            ++finite;
+
+            const auto elapsed = Clock::now() - start;
+            runTotal += elapsed;
+            rawWorst = std::max(rawWorst, elapsed);
+            fastest[index] = std::min(fastest[index], elapsed);
+
+            if (run == 0)
+            {
+                const std::span<const float> samples(block.data(), (std::size_t) n);
+                for (const float x : samples)
+                {
+                    if (! std::isfinite(x))
+                    {
+                        ++nonfinite;
+                        continue;
+                    }
+                    peak = std::max(peak, (double) std::abs(x));
+                    sumSquares += (double) x * (double) x;
+                    ++finite;
+                }
+                if (audio)
+                    audio(samples);
+            }
+            position += n;
         }
-        if (audio)
-            audio(samples);
-        position += n;
+        slowestRun = std::max(slowestRun, runTotal);
+
+        if (run == 0)
+        {
+            stats.strikes = (int) nextStrike;
+            stats.solver = drum->solverStats();
+            figures.batterGridSpacing_m = drum->batter().grid().spacing();
+            figures.carryGridSpacing_m = drum->carry().grid().spacing();
+            figures.batterNodes = drum->batter().grid().numInterior();
+            figures.carryNodes = drum->carry().grid().numInterior();
+            figures.snarePoints = drum->snareContact().numPoints();
+        }
     }
 
-    RenderStats stats;
+    Clock::duration total {}, worst {};
+    for (const auto t : fastest)
+    {
+        total += t;
+        worst = std::max(worst, t);
+    }
+
     stats.samples = plan.numSamples;
     stats.channels = 1;
     stats.wallSeconds = std::chrono::duration<double>(total).count();
     stats.peak = peak;
     stats.rms = finite > 0 ? std::sqrt(sumSquares / (double) finite) : 0.0;
     stats.nonfiniteSamples = nonfinite;
-    stats.strikes = (int) nextStrike;
-    stats.solver = drum.solverStats();
 
-    BenchFigures figures;
     figures.blockSize = blockSize;
-    figures.blocks = blocks;
-    figures.meanBlock_s = blocks > 0 ? stats.wallSeconds / (double) blocks : 0.0;
+    figures.blocks = (std::int64_t) numBlocks;
+    figures.meanBlock_s = numBlocks > 0 ? stats.wallSeconds / (double) numBlocks : 0.0;
     figures.worstBlock_s = std::chrono::duration<double>(worst).count();
+    figures.repeats = repeats;
+    figures.worstBlockRaw_s = std::chrono::duration<double>(rawWorst).count();
+    figures.slowestRun_s = std::chrono::duration<double>(slowestRun).count();
     figures.blockBudget_s = (double) blockSize / plan.sampleRate_Hz;
-    figures.batterGridSpacing_m = drum.batter().grid().spacing();
-    figures.carryGridSpacing_m = drum.carry().grid().spacing();
-    figures.batterNodes = drum.batter().grid().numInterior();
-    figures.carryNodes = drum.carry().grid().numInterior();
-    figures.snarePoints = drum.snareContact().numPoints();
     stats.bench = figures;
     return stats;
 }

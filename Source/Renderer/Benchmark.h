@@ -15,6 +15,7 @@
 #include "Drum.h"
 
 #include <functional>
+#include <memory>
 #include <span>
 #include <string_view>
 
@@ -37,9 +38,11 @@ std::string_view scenarioName(const RenderJob& job);
 // the scenario's length (--bench-short: 0.25 s; with --midi: the usual last note + 2 s).
 RenderJob benchmarkJob(const RenderJob& job);
 
-// Renders the plan on the drum as described above. audio (may be empty) receives every block
-// of the mix. The result's `bench` holds the block timings and the grid figures.
-RenderStats benchmarkDrum(Drum& drum, const RenderPlan& plan, int blockSize,
-                          const std::function<void(std::span<const float>)>& audio);
+// Renders the plan `repeats` times, each on a new drum from makeDrum, as described above.
+// audio (may be empty) receives every block of the first run's mix. The result's `bench`
+// holds the block timings (each block's fastest run, and the raw extremes) and the grid
+// figures; the other figures are of the first run.
+RenderStats benchmarkDrum(const std::function<std::unique_ptr<Drum>()>& makeDrum, const RenderPlan& plan,
+                          int blockSize, int repeats, const std::function<void(std::span<const float>)>& audio);
 
 } // namespace snaresim::render

@@ -181,6 +181,14 @@ int parseBlockSize(std::string_view text)
     return size;
 }
 
+int parseRepeats(std::string_view text)
+{
+    const int repeats = parseInteger(text, "--bench-repeat");
+    if (repeats < 1 || repeats > kMaxBenchRepeats)
+        fail("--bench-repeat: " + inQuotes(text) + " is outside 1.." + std::to_string(kMaxBenchRepeats));
+    return repeats;
+}
+
 BenchScenario parseScenario(std::string_view text)
 {
     if (text == "default")
@@ -202,6 +210,8 @@ void checkBenchOptions(const RenderJob& job, bool haveSeconds)
             fail("--bench-scenario is an option of --bench");
         if (job.benchShort)
             fail("--bench-short is an option of --bench");
+        if (job.benchRepeats)
+            fail("--bench-repeat is an option of --bench");
         return;
     }
 
@@ -350,6 +360,8 @@ CommandLine parseCommandLine(const std::vector<std::string>& args)
             job.benchShort = flag();
         else if (option == "--block-size")
             setOnce(job.blockSize, parseBlockSize(value()), option);
+        else if (option == "--bench-repeat")
+            setOnce(job.benchRepeats, parseRepeats(value()), option);
         else if (option == "--bench-scenario")
             setOnce(job.benchScenario, parseScenario(value()), option);
         else
@@ -469,8 +481,16 @@ Benchmark:
                         127 every 0.5 s for --seconds (default 2); roll = 16 strikes at
                         velocity 127, 60 ms apart from 0.1 s, 1.5 s long (--seconds changes
                         the length only)
-  --bench-short         a quick check (for CI): the default scenario for 0.25 s; fails only
-                        on a crash or non-finite output, never on time
+  --bench-short         a quick check (for CI): the default scenario for 0.25 s, one run;
+                        fails only on a crash or non-finite output, never on time
+  --bench-repeat N      render the scenario N times (1..50; default 5, --bench-short 1),
+                        each on a new drum, and time every block by its fastest run: the
+                        engine's own cost of the block, without what the machine took
+                        meanwhile (other processes, interrupts, a virtual machine's
+                        host). realtime_factor, mean_block_ms and worst_block_ms are of
+                        those times; worst_block_raw_ms is the slowest block of any run
+                        and realtime_factor_slowest_run the slowest whole run. The audio,
+                        -o and the other figures are of the first run.
 )" + presetLine() + R"(
 Exit status: 0 success, 2 bad input or unwritable output (one line on stderr starting
 with "snaresim-render: error: ", no output file left behind), 1 internal failure,

@@ -248,7 +248,7 @@ int benchmark(const RenderJob& commandLineJob)
     const auto midiStrikes = job.midiFile ? readMidiStrikes(*job.midiFile) : std::vector<Strike> {};
     const auto plan = makeRenderPlan(job, midiStrikes);
     const auto config = makeConfig(job, params); // no --lossless with --bench: makeDrumConfig as is
-    const auto drum = makeDrum(config);
+    (void) makeDrum(config); // a config the engine refuses fails here, before any output
 
     std::optional<AtomicFile> wavFile;
     std::unique_ptr<WavWriter> wav;
@@ -258,7 +258,8 @@ int benchmark(const RenderJob& commandLineJob)
         wav = std::make_unique<WavWriter>(*wavFile, plan.sampleRate_Hz, 1);
     }
 
-    const auto stats = benchmarkDrum(*drum, plan, job.selectedBlockSize(), [&](std::span<const float> block) {
+    const auto newDrum = [&] { return makeDrum(config); };
+    const auto stats = benchmarkDrum(newDrum, plan, job.selectedBlockSize(), job.selectedRepeats(), [&](std::span<const float> block) {
         throwIfInterrupted(); // once per block, outside the timed section
         if (wav)
         {

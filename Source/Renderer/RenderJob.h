@@ -24,6 +24,8 @@ inline constexpr int kDefaultBlockSize = 64;
 inline constexpr int kMinBlockSize = 1;
 inline constexpr int kMaxBlockSize = 8192;
 inline constexpr double kBenchShortSeconds = 0.25; // --bench-short: the default scenario, this long
+inline constexpr int kDefaultBenchRepeats = 5;     // --bench-repeat (--bench-short: 1)
+inline constexpr int kMaxBenchRepeats = 50;
 
 // One strike: when, and how hard (MIDI velocity 1..127).
 struct Strike
@@ -80,9 +82,11 @@ struct RenderJob
     std::optional<int> blockSize;                   // --block-size (bench only, checked range)
     std::optional<BenchScenario> benchScenario;     // --bench-scenario (bench only)
     bool benchShort = false;                        // --bench-short (bench only)
+    std::optional<int> benchRepeats;                // --bench-repeat (bench only, checked range)
 
     MicOutput selectedMic() const { return mic.value_or(MicOutput::mix); }
     int selectedBlockSize() const { return blockSize.value_or(kDefaultBlockSize); }
+    int selectedRepeats() const { return benchRepeats.value_or(benchShort ? 1 : kDefaultBenchRepeats); }
     BenchScenario selectedScenario() const { return benchScenario.value_or(BenchScenario::standard); }
 };
 

@@ -24,6 +24,9 @@ struct BenchFigures
     std::int64_t blocks = 0;
     double meanBlock_s = 0.0;
     double worstBlock_s = 0.0;
+    int repeats = 1;                   // runs; the block times above are each block's fastest run
+    double worstBlockRaw_s = 0.0;      // the slowest block of any run
+    double slowestRun_s = 0.0;         // the slowest run's total block time
     double blockBudget_s = 0.0;        // blockSize / sample rate
     double batterGridSpacing_m = 0.0;  // Drum::batter().grid().spacing()
     double carryGridSpacing_m = 0.0;

@@ -94,6 +94,12 @@ TEST_CASE("bench: --json reports the block timings with sane values", "[renderer
     CHECK(mean == Approx(1000.0 * wall / 375.0));
     CHECK(number(json, "realtime_factor") > 0.0);
     CHECK(number(json, "realtime_factor") == Approx(0.25 / wall));
+    // Five runs by default; the block times are each block's fastest run, so no raw block is
+    // faster than the worst of them and no run is faster than their sum.
+    CHECK(number(json, "repeats") == 5);
+    CHECK(number(json, "worst_block_raw_ms") >= worst);
+    CHECK(number(json, "realtime_factor_slowest_run") > 0.0);
+    CHECK(number(json, "realtime_factor_slowest_run") <= number(json, "realtime_factor"));
 
     // The model's size: the coarse grid spacing and the wires' contact points.
     CHECK(number(json, "batter_grid_spacing_m") > 0.0);
@@ -133,6 +139,15 @@ TEST_CASE("bench: the block size defaults to 64 and does not change the audio", 
     CHECK(wavA.length == 9600);
     CHECK(peakOf(wavA.samples) > 0.0f);
     CHECK(wavA.samples == wavB.samples);
+
+    // One run or three: the WAV is the first run's, the same samples.
+    const auto c = dir.out() / "c.wav";
+    const auto once = benchJson(dir, with({ "-o", c.string(), "--bench-repeat", "1" }, quick));
+    CHECK(number(once, "repeats") == 1);
+    CHECK(number(once, "worst_block_raw_ms") == Approx(number(once, "worst_block_ms")));
+    const auto wavC = readWav(c);
+    REQUIRE(wavC.opened);
+    CHECK(wavA.samples == wavC.samples);
 }
 
 TEST_CASE("bench: the roll scenario renders 16 strikes in 1.5 s", "[renderer][bench]")
@@ -170,6 +185,7 @@ TEST_CASE("bench: --bench-short renders 0.25 s of the default scenario", "[rende
     CHECK(number(json, "strikes") == 1);
     CHECK(number(json, "block_size") == 64);
     CHECK(number(json, "nonfinite_samples") == 0);
+    CHECK(number(json, "repeats") == 1);
 
     // Without --json: a readable summary.
     const auto run = runRenderer({ "--bench", "--bench-short" }, dir.root() / "capture");
@@ -194,6 +210,9 @@ TEST_CASE("bench: bad block sizes and refused options exit with 2", "[renderer][
     requireRejected(dir, { "--bench", "--block-size" }, "--block-size");
     requireRejected(dir, { "--bench", "--block-size", "64", "--block-size", "32" }, "more than once");
     requireRejected(dir, { "--bench", "--bench-scenario", "march" }, "--bench-scenario");
+    requireRejected(dir, { "--bench", "--bench-repeat", "0" }, "--bench-repeat");
+    requireRejected(dir, { "--bench", "--bench-repeat", "51" }, "--bench-repeat");
+    requireRejected(dir, { "--bench", "--bench-repeat", "two" }, "--bench-repeat");
     requireRejected(dir, { "--bench", "--bench-short", "--seconds", "1" }, "--bench-short");
     requireRejected(dir, { "--bench", "--bench-short", "--bench-scenario", "roll" }, "--bench-short");
     requireRejected(dir, { "--bench", "--energy-csv", (dir.out() / "e.csv").string() }, "--energy-csv");
@@ -205,6 +224,7 @@ TEST_CASE("bench: bad block sizes and refused options exit with 2", "[renderer][
     // The benchmark options belong to --bench.
     requireRejected(dir, { "-o", wav, "--hit", "0:100", "--block-size", "64" }, "--block-size");
     requireRejected(dir, { "-o", wav, "--hit", "0:100", "--bench-short" }, "--bench-short");
+    requireRejected(dir, { "-o", wav, "--hit", "0:100", "--bench-repeat", "2" }, "--bench-repeat");
     requireRejected(dir, { "-o", wav, "--hit", "0:100", "--bench-scenario", "roll" }, "--bench-scenario");
 
     // The engine's checks still apply.
