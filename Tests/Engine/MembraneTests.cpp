@@ -1,5 +1,6 @@
 // The head: grid from the stability bound (eq. 39) and its modes against the ideal membrane.
 
+#include "Parameters.h"
 #include "SpectrumPeaks.h"
 #include "TestDrums.h"
 
@@ -85,4 +86,52 @@ TEST_CASE("the lossless head's modes match the ideal membrane (Bessel zeros)", "
     }
     INFO("fundamental " << peaks[0] << " Hz vs 2.4048 c / (2 pi R) = " << f01 << " Hz");
     CHECK(peaks[0] == Approx(f01).epsilon(0.01));
+}
+
+TEST_CASE("the real-time default grid keeps the low batter modes at the Bessel frequencies", "[membrane]")
+{
+    // The product's grid (makeDrumConfig at 48 kHz: designed for the largest tension the
+    // control allows, twice the bound, Quality = 2), the batter alone and lossless.
+    ParameterSet p;
+    p.set(ParamId::snaresEngaged, 0.0);
+    p.set(ParamId::airModel, 0.0);
+    DrumConfig cfg = makeDrumConfig(p, 48000.0).lossless();
+    REQUIRE(cfg.batter.gridCoarseness == 2.0);
+    cfg.mics.topX_frac = 0.5 * std::cos(0.35); // off every nodal line of the first six modes
+    cfg.mics.topY_frac = 0.5 * std::sin(0.35);
+    cfg.mics.mixTop = 1.0;
+    cfg.mics.mixBottom = cfg.mics.mixFar = 0.0;
+    Drum drum(cfg);
+    drum.strike(2.0, 0.55, 0.0);
+    for (int n = 0; n < 4000 && drum.mallet(0).inPlay(); ++n)
+        drum.step();
+    REQUIRE_FALSE(drum.mallet(0).inPlay());
+    std::vector<double> x(1u << 17);
+    for (auto& v : x)
+        v = drum.step();
+
+    const double c = std::sqrt(cfg.batter.tension_N_per_m / cfg.batter.density_kg_per_m2);
+    const double f01 = 2.4048 * c / (2.0 * std::numbers::pi * cfg.batter.radius_m);
+    // Bessel zeros of (0,1) (1,1) (2,1) (0,2) (3,1) (1,2)
+    const double zeros[] = { 2.4048, 3.8317, 5.1356, 5.5201, 6.3802, 7.0156 };
+    const auto spectrum = test::hannSpectrum(x);
+    const auto found = test::peaks(spectrum, cfg.sampleRate_Hz / (2.0 * (double) spectrum.size()), 0.5 * f01, 3.0 * f01);
+    // The six strongest peaks, a window's side lobes (within 3 % of a stronger peak) left out.
+    std::vector<double> modes;
+    for (const auto& peak : found)
+    {
+        const bool lobe = std::any_of(modes.begin(), modes.end(), [&](double f) { return std::abs(peak.frequency / f - 1.0) < 0.03; });
+        if (! lobe)
+            modes.push_back(peak.frequency);
+        if (modes.size() == 6)
+            break;
+    }
+    REQUIRE(modes.size() == 6);
+    std::sort(modes.begin(), modes.end());
+    for (int i = 0; i < 6; ++i)
+    {
+        const double ideal = zeros[i] / zeros[0] * f01;
+        INFO("mode " << i << ": " << modes[(size_t) i] << " Hz vs " << ideal << " Hz");
+        CHECK(modes[(size_t) i] == Approx(ideal).epsilon(0.005));
+    }
 }
