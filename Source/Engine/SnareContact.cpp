@@ -280,12 +280,16 @@ SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wire
         const double xiNew = ui - slotW[(size_t) j];
         xiNext[(size_t) p] = xiNew;
         const double next = psiQ[(size_t) p] + 0.5 * gq[(size_t) k] * (xiNew - xiPrev[(size_t) p]);
-        // apart at n+1: psi restarts from zero at the next contact
-        const bool keep = xiNew > 0.0;
-        touchHistory[(size_t) p] = (unsigned char) (((touchHistory[(size_t) p] << 1) | (keep ? 1 : 0)) & 3);
+        // psi at n+1/2 stands for the potential of xi^n and xi^{n+1}: on the step a point leaves
+        // the head it still holds what xi^n stored, and the next step gives that back as force.
+        // Apart at n and n+1, what is left is psi's drift: reset, so the next contact starts
+        // from zero.
+        const bool touching = xiNew > 0.0;
+        const bool keep = touching || xiNow[(size_t) p] > 0.0;
+        touchHistory[(size_t) p] = (unsigned char) (((touchHistory[(size_t) p] << 1) | (touching ? 1 : 0)) & 3);
         removed += keep ? 0.0 : next * next;
         psiQ[(size_t) p] = keep ? next : 0.0;
-        contacts += keep ? 1 : 0;
+        contacts += touching ? 1 : 0;
         deepest = std::max(deepest, xiNew);
     }
     lastCorrection = 0.5 * hs * removed;

@@ -21,9 +21,11 @@
 //   tangent g = psi'(xi^n) lets psi fall far behind sqrt(2 Phi) when a wire arrives fast (a
 //   contact begins with xi^n near 0 and a small g), and the wires then sink into the head; we
 //   take g as the secant of psi from xi^{n-1} to the free prediction of xi^{n+1}, which is exact
-//   when the prediction is. psi is evolved, not recomputed, so some can be left when a point
-//   separates: it is reset to zero there and the energy removed, h_s psi^2 / 2 >= 0, is booked
-//   as a loss (correctionLoss()), so the scheme stays passive and the ledger balances.
+//   when the prediction is. psi^{n+1/2} stands for the potential of xi^n and xi^{n+1}, so it
+//   runs down to zero on the step after a point leaves the head; psi is evolved, not
+//   recomputed, so a little can be left then. Where a point is apart at n and n+1 it is reset
+//   to zero and the energy removed, h_s psi^2 / 2 >= 0, is booked as a loss (correctionLoss()),
+//   so the scheme stays passive and the ledger balances.
 
 #include "Membrane.h"
 #include "PowerLawPotential.h"
