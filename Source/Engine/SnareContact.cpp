@@ -5,9 +5,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <stdexcept>
 
@@ -41,39 +41,33 @@ SnareContact::SnareContact(const SnareSpec& spec, const SnareWires& wires, const
                 pointHeadNode.push_back(node);
             }
         }
+    // Number the points group by group, so that a group's points are contiguous (the ids above
+    // ran over the wires' interior nodes in order: pointOfWireNode maps them).
     size_t largest = 1;
-    for (const auto& [node, members] : byNode)
-    {
-        groupNode.push_back(node);
-        groupPointBegin.push_back((int) groupPoints.size());
-        groupEndBegin.push_back((int) groupEnds.size());
-        groupPoints.insert(groupPoints.end(), members.first.begin(), members.first.end());
-        groupEnds.insert(groupEnds.end(), members.second.begin(), members.second.end());
-        largest = std::max(largest, members.first.size());
-    }
-    groupPointBegin.push_back((int) groupPoints.size());
-    groupEndBegin.push_back((int) groupEnds.size());
-    // Number the points in group order, so that a group's points are contiguous.
     std::vector<int> wireNodeByGroup, headNodeByGroup;
     pointOfWireNode.assign(pointWireNode.size(), 0);
-    for (size_t q = 0; q < groupPoints.size(); ++q)
+    for (const auto& [node, members] : byNode)
     {
-        const int old = groupPoints[q];
-        wireNodeByGroup.push_back(pointWireNode[(size_t) old]);
-        headNodeByGroup.push_back(pointHeadNode[(size_t) old]);
-        pointOfWireNode[(size_t) old] = (int) q; // old ids run over the wires' interior nodes in order
-        groupPoints[q] = (int) q;
+        const int g = (int) groupNode.size();
+        groupNode.push_back(node);
+        groupPointBegin.push_back((int) wireNodeByGroup.size());
+        groupEndBegin.push_back((int) groupEnds.size());
+        for (const int old : members.first)
+        {
+            pointOfWireNode[(size_t) old] = (int) wireNodeByGroup.size();
+            wireNodeByGroup.push_back(pointWireNode[(size_t) old]);
+            headNodeByGroup.push_back(pointHeadNode[(size_t) old]);
+        }
+        groupEnds.insert(groupEnds.end(), members.second.begin(), members.second.end());
+        (members.second.empty() ? openGroups : endGroups).push_back(g);
+        largest = std::max(largest, members.first.size());
     }
+    groupPointBegin.push_back((int) wireNodeByGroup.size());
+    groupEndBegin.push_back((int) groupEnds.size());
     pointWireNode = std::move(wireNodeByGroup);
     pointHeadNode = std::move(headNodeByGroup);
     wireInterior = M - 1;
-    groupHasEnds.assign(groupNode.size(), 0);
-    for (size_t g = 0; g < groupNode.size(); ++g)
-        groupHasEnds[g] = groupEndBegin[g + 1] > groupEndBegin[g] ? 1 : 0;
-    for (size_t g = 0; g < groupNode.size(); ++g)
-        (groupHasEnds[g] != 0 ? endGroups : openGroups).push_back((int) g);
     mayTouch.assign(pointWireNode.size() + 8, 0);
-    touchHistory.assign(pointWireNode.size(), 0);
     for (auto* v : { &solveGroups, &slotEnd })
         v->assign(groupNode.size(), 0);
     for (auto* v : { &slotW0, &slotCc, &slotS, &slotW })
@@ -126,16 +120,17 @@ void SnareContact::eliminateEnds(int g, const Membrane& carry, const SnareWires&
 namespace
 {
 // Free gaps xi* = u - w_c at n+1 for every contact point (two gathers per point; vectorises
-// on AVX2), and per point whether it may touch: xi* > 0, or it touched at n or n-1 (history).
+// on AVX2), and per point whether it may touch: xi* > 0, or it touched at n or n-1.
 SNARESIM_VECTOR_CLONES void computeGaps(double* __restrict xi, unsigned char* __restrict mayTouch, const double* __restrict u,
-                                        const double* __restrict w, const unsigned char* __restrict history,
+                                        const double* __restrict w, const double* __restrict xiNow,
+                                        const double* __restrict xiPrev,
                                         const int* __restrict wireNode, const int* __restrict headNode, int n)
 {
     for (int p = 0; p < n; ++p)
     {
         const double x = u[wireNode[p]] - w[headNode[p]];
         xi[p] = x;
-        mayTouch[p] = (unsigned char) ((x > 0.0 ? 1 : 0) | history[p]);
+        mayTouch[p] = (unsigned char) ((x > 0.0) | (xiNow[p] > 0.0) | (xiPrev[p] > 0.0));
     }
 }
 
@@ -173,7 +168,7 @@ SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wire
     // Free gaps xi* = u* - w_c* at n+1 for every point (no contact or end forces yet): the
     // prediction g is built from, and xi^{n+1} itself for the points of groups left alone.
     const int n = (int) pointWireNode.size();
-    computeGaps(xiNext.data(), mayTouch.data(), wires.uNext.data(), carry.nextDisplacement().data(), touchHistory.data(),
+    computeGaps(xiNext.data(), mayTouch.data(), wires.uNext.data(), carry.nextDisplacement().data(), xiNow.data(), xiPrev.data(),
                 pointWireNode.data(), pointHeadNode.data(), n);
 
     // The groups to solve (those holding wire ends first, then those with a point that may
@@ -220,7 +215,7 @@ SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wire
     {
         const int g = solveGroups[(size_t) j];
         double W0 = carry.nextAt(groupNode[(size_t) g]), cc = c;
-        if (groupHasEnds[(size_t) g] != 0)
+        if (groupEndBegin[(size_t) g + 1] > groupEndBegin[(size_t) g])
             eliminateEnds(g, carry, wires, c, W0, cc);
         slotW0[(size_t) j] = W0;
         slotCc[(size_t) j] = cc;
@@ -286,7 +281,6 @@ SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wire
         // from zero.
         const bool touching = xiNew > 0.0;
         const bool keep = touching || xiNow[(size_t) p] > 0.0;
-        touchHistory[(size_t) p] = (unsigned char) (((touchHistory[(size_t) p] << 1) | (touching ? 1 : 0)) & 3);
         removed += keep ? 0.0 : next * next;
         psiQ[(size_t) p] = keep ? next : 0.0;
         contacts += touching ? 1 : 0;
@@ -316,17 +310,13 @@ SnareSolveResult SnareContact::stepNewton(Membrane& carry, SnareWires& wires)
             const double W = carry.nextAt(groupNode[(size_t) g]);
             bool touching = false;
             for (int p = p0; p < p1 && ! touching; ++p)
-            {
-                const int id = groupPoints[(size_t) p];
-                touching = xiPrev[(size_t) id] > 0.0 || u[pointWireNode[(size_t) id]] - W > 0.0;
-            }
+                touching = xiPrev[(size_t) p] > 0.0 || u[pointWireNode[(size_t) p]] - W > 0.0;
             if (! touching)
             {
                 for (int p = p0; p < p1; ++p)
                 {
-                    const int id = groupPoints[(size_t) p];
-                    xiNext[(size_t) id] = u[pointWireNode[(size_t) id]] - W;
-                    rLast[(size_t) id] = nan;
+                    xiNext[(size_t) p] = u[pointWireNode[(size_t) p]] - W;
+                    rLast[(size_t) p] = nan;
                 }
                 continue;
             }
@@ -354,12 +344,11 @@ void SnareContact::solveGroup(int g, Membrane& carry, SnareWires& wires, SnareSo
     int m = 0;
     for (int p = p0; p < p1; ++p)
     {
-        const int id = groupPoints[(size_t) p];
-        const double aPrev = xiPrev[(size_t) id];
-        const double xiFree = u[pointWireNode[(size_t) id]] - W0;
+        const double aPrev = xiPrev[(size_t) p];
+        const double xiFree = u[pointWireNode[(size_t) p]] - W0;
         if (aPrev > 0.0 || xiFree > 0.0)
         {
-            active[(size_t) m] = id;
+            active[(size_t) m] = p;
             a[(size_t) m] = aPrev;
             phiA[(size_t) m] = law.phi(aPrev);
             b[(size_t) m] = aPrev - xiFree;
@@ -387,7 +376,7 @@ void SnareContact::solveGroup(int g, Membrane& carry, SnareWires& wires, SnareSo
         result.iterations = std::max(result.iterations, its);
     }
     for (int p = p0; p < p1; ++p)
-        rLast[(size_t) groupPoints[(size_t) p]] = std::numeric_limits<double>::quiet_NaN();
+        rLast[(size_t) p] = std::numeric_limits<double>::quiet_NaN();
     for (int i = 0; i < m; ++i)
     {
         psi[(size_t) i] = law.psi(r[(size_t) i], a[(size_t) i]); // eq. (30)
@@ -404,9 +393,8 @@ void SnareContact::solveGroup(int g, Membrane& carry, SnareWires& wires, SnareSo
         u[endWireNode[(size_t) groupEnds[(size_t) e]]] = W; // eq. (32a)
     for (int p = p0; p < p1; ++p)
     {
-        const int id = groupPoints[(size_t) p];
-        xiNext[(size_t) id] = u[pointWireNode[(size_t) id]] - W;
-        if (xiNext[(size_t) id] > 0.0)
+        xiNext[(size_t) p] = u[pointWireNode[(size_t) p]] - W;
+        if (xiNext[(size_t) p] > 0.0)
             ++result.contacts;
     }
 }
@@ -598,7 +586,6 @@ double SnareContact::gapAt(int wire, int l) const
 
 void SnareContact::clear()
 {
-    std::fill(touchHistory.begin(), touchHistory.end(), 0);
     std::fill(psiQ.begin(), psiQ.end(), 0.0);
     lastCorrection = 0.0;
     std::fill(rLast.begin(), rLast.end(), std::numeric_limits<double>::quiet_NaN());

@@ -119,20 +119,17 @@ private:
     double halfExponent = 0.25; // (beta - 1) / 2
     bool quarterPower = true;   // beta = 1.5: g = gScale xi^(1/4)
     double lastCorrection = 0.0;
-    int firstNode = 0;
     // contact points: wire-array index of the node, head node, grouped by head node (CSR)
     std::vector<int> pointWireNode, pointHeadNode;
     std::vector<int> endWireNode, endHeadNode;
     std::vector<int> groupNode, groupPointBegin, groupEndBegin;
-    std::vector<int> groupPoints, groupEnds;
+    std::vector<int> groupEnds;
     std::vector<double> xiNext, xiNow, xiPrev;
     std::vector<double> rLast; // last step's root per point (NaN when it was not solved): Newton's start
     std::vector<double> psiQ;  // quadratised: psi at n+1/2 (after step) / n-1/2 (before), per point
-    std::vector<unsigned char> groupHasEnds;
     std::vector<int> endGroups;              // groups holding wire ends (solved every step)
     std::vector<int> openGroups;             // groups without wire ends
     std::vector<unsigned char> mayTouch;     // quadratised: per point, xi*, xi^n or xi^{n-1} > 0 (padded by 8)
-    std::vector<unsigned char> touchHistory; // quadratised: bit 0 xi^{n+1} > 0, bit 1 xi^n > 0 (after a step)
     std::vector<int> pointOfWireNode;        // wire i, interior node l -> point (i * (M - 1) + l - 1)
     int wireInterior = 0;                    // interior nodes per wire, M - 1
     // per-group scratch (sized for the largest group)
