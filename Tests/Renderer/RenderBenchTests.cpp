@@ -45,25 +45,6 @@ juce::var benchJson(const TempDir& dir, const std::vector<std::string>& args)
     return json;
 }
 
-// Bad input: exit 2, one "error:" line, nothing on stdout, nothing written.
-void requireRejected(const TempDir& dir, const std::vector<std::string>& args, const std::string& mentions)
-{
-    std::string command;
-    for (const auto& a : args)
-        command += " " + a;
-    INFO("snaresim-render" << command);
-
-    const auto before = entries(dir.out());
-    const auto run = runRenderer(args, dir.root() / "capture");
-    INFO("stderr: " << run.err);
-    CHECK(run.exitCode == 2);
-    CHECK(run.err.rfind("snaresim-render: error: ", 0) == 0);
-    CHECK(lines(run.err).size() == 1);
-    CHECK(run.err.find(mentions) != std::string::npos);
-    CHECK(run.out.empty());
-    CHECK(entries(dir.out()) == before);
-}
-
 } // namespace
 
 TEST_CASE("bench: --json reports the block timings with sane values", "[renderer][bench]")

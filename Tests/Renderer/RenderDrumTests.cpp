@@ -178,22 +178,12 @@ TEST_CASE("plots: --energy-plot and --spectrogram write PNG images", "[renderer]
         CHECK(json["spectrogram"].toString().toStdString() == fs::absolute(spectrum).string());
         CHECK(json["energy_tracking"] == juce::var(true));
 
-        const auto plot = readPng(energy);
-        CHECK(plot.pngSignature);
-        REQUIRE(plot.loaded);
-        CHECK(plot.width == 1400);
-        CHECK(plot.height == 600);
-        CHECK(distinctColours(energy, 0, 0, plot.width, plot.height) > 1);
+        requirePicture(energy, 1400, 600);
         // Inside each panel: curves over white and grid, not one colour.
         CHECK(distinctColours(energy, 150, 80, 450, 400) > 10);
         CHECK(distinctColours(energy, 820, 80, 380, 400) > 10);
 
-        const auto spectrogram = readPng(spectrum);
-        CHECK(spectrogram.pngSignature);
-        REQUIRE(spectrogram.loaded);
-        CHECK(spectrogram.width == 1200);
-        CHECK(spectrogram.height == 700);
-        CHECK(distinctColours(spectrum, 0, 0, spectrogram.width, spectrogram.height) > 1);
+        requirePicture(spectrum, 1200, 700);
         CHECK(distinctColours(spectrum, 200, 100, 800, 500) > 50); // the spectrogram itself
 
         CHECK(entries(dir.out()) == std::vector<std::string> { "drum.wav", "energy.csv", "energy.png", "spectrum.png" });
@@ -206,13 +196,9 @@ TEST_CASE("plots: --energy-plot and --spectrogram write PNG images", "[renderer]
                                      dir.root() / "capture");
         INFO("stderr: " << run.err);
         REQUIRE(run.exitCode == 0);
-        const auto plot = readPng(energy);
-        REQUIRE(plot.loaded);
-        CHECK(plot.width == 1400);
+        requirePicture(energy, 1400, 600);
         CHECK(distinctColours(energy, 150, 80, 450, 400) > 10);
-        const auto spectrogram = readPng(spectrum);
-        REQUIRE(spectrogram.loaded);
-        CHECK(spectrogram.height == 700);
+        requirePicture(spectrum, 1200, 700);
         CHECK(distinctColours(spectrum, 200, 100, 800, 500) > 10);
         CHECK(entries(dir.out()) == std::vector<std::string> { "drum.wav", "energy.png", "spectrum.png" });
     }
@@ -227,12 +213,7 @@ TEST_CASE("plots: --snare-plot writes a PNG of the snare wires", "[renderer]")
     // The PNG is 1200 x 700; inside the top panel (wires and carry head) and the bottom one
     // (contact count), more than white and grid.
     auto checkImage = [&](int topColours, int bottomColours) {
-        const auto png = readPng(snares);
-        CHECK(png.pngSignature);
-        REQUIRE(png.loaded);
-        CHECK(png.width == 1200);
-        CHECK(png.height == 700);
-        CHECK(distinctColours(snares, 0, 0, png.width, png.height) > 1);
+        requirePicture(snares, 1200, 700);
         CHECK(distinctColours(snares, 130, 70, 750, 300) > topColours);
         CHECK(distinctColours(snares, 130, 490, 750, 120) > bottomColours);
     };
@@ -279,9 +260,6 @@ TEST_CASE("plots: --snare-plot writes a PNG of the snare wires", "[renderer]")
         INFO("stderr: " << run.err);
         REQUIRE(run.exitCode == 0);
         CHECK(number(parseJson(run.out), "strikes") == 0.0);
-        const auto png = readPng(snares);
-        REQUIRE(png.loaded);
-        CHECK(png.width == 1200);
-        CHECK(distinctColours(snares, 0, 0, png.width, png.height) > 1);
+        requirePicture(snares, 1200, 700);
     }
 }

@@ -1,5 +1,7 @@
 #include "RendererTestSupport.h"
 
+#include <catch2/catch.hpp>
+
 #include <juce_audio_formats/juce_audio_formats.h>
 #include <juce_graphics/juce_graphics.h>
 
@@ -193,6 +195,36 @@ std::vector<std::string> lines(const std::string& text)
     for (std::string line; std::getline(in, line);)
         result.push_back(line);
     return result;
+}
+
+void requirePicture(const fs::path& file, int width, int height)
+{
+    INFO("picture " << file.string());
+    const auto png = readPng(file);
+    CHECK(png.pngSignature);
+    REQUIRE(png.loaded);
+    CHECK(png.width == width);
+    CHECK(png.height == height);
+    CHECK(distinctColours(file, 0, 0, png.width, png.height) > 1);
+}
+
+void requireRejected(const TempDir& dir, const std::vector<std::string>& args, const std::string& mentions)
+{
+    std::string command;
+    for (const auto& a : args)
+        command += " " + a;
+    INFO("snaresim-render" << command);
+
+    const auto before = entries(dir.out());
+    const auto run = runRenderer(args, dir.root() / "capture");
+    INFO("stderr: " << run.err);
+    CHECK(run.exitCode == 2);
+    CHECK(run.err.rfind("snaresim-render: error: ", 0) == 0);
+    CHECK(lines(run.err).size() == 1);
+    CHECK((! run.err.empty() && run.err.back() == '\n'));
+    CHECK(run.err.find(mentions) != std::string::npos);
+    CHECK(run.out.empty());
+    CHECK(entries(dir.out()) == before);
 }
 
 } // namespace rendertest

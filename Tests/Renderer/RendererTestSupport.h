@@ -72,6 +72,9 @@ struct PngData
 
 PngData readPng(const fs::path& file);
 
+// Checks that `file` is a PNG of this size with more than one colour (REQUIRE: it loads).
+void requirePicture(const fs::path& file, int width, int height);
+
 // The number of distinct colours (ARGB) in a region of an image file (0 when it cannot be
 // loaded), counting at most `limit`.
 int distinctColours(const fs::path& file, int x, int y, int width, int height, int limit = 1000);
@@ -86,5 +89,10 @@ juce::var parseJson(const std::string& text);
 
 // Every line of a text, without the line ends.
 std::vector<std::string> lines(const std::string& text);
+
+// Runs the renderer with exactly these arguments and checks the bad-input contract: exit 2,
+// one line on stderr starting with "snaresim-render: error: " and naming `mentions`, nothing
+// on stdout, nothing left in dir.out().
+void requireRejected(const TempDir& dir, const std::vector<std::string>& args, const std::string& mentions);
 
 } // namespace rendertest
