@@ -3,56 +3,21 @@
 
 #include "Drum.h"
 #include "DrumConfig.h"
+#include "ParameterLayout.h"
+#include "PluginState.h"
 #include "Presets.h"
 
 #include <algorithm>
 #include <cmath>
 #include <exception>
-#include <optional>
 #include <string>
 #include <utility>
 
-namespace
-{
-const juce::Identifier stateTreeType { "SnareSimState" };
-
-juce::NormalisableRange<float> makeRange (const snaresim::ParameterSpec& spec)
-{
-    const auto lo = (float) spec.minValue;
-    const auto hi = (float) spec.maxValue;
-
-    if (spec.scale == snaresim::ParamScale::logarithmic && spec.minValue > 0.0 && spec.maxValue > spec.minValue)
-    {
-        const double logRatio = std::log (spec.maxValue / spec.minValue);
-        const double minValue = spec.minValue;
-
-        return { lo, hi,
-                 [minValue, logRatio] (float start, float end, float proportion)
-                 {
-                     const auto v = (float) (minValue * std::exp ((double) proportion * logRatio));
-                     return juce::jlimit (start, end, v);
-                 },
-                 [minValue, logRatio] (float, float, float value)
-                 {
-                     const auto p = std::log ((double) value / minValue) / logRatio;
-                     return (float) juce::jlimit (0.0, 1.0, p);
-                 },
-                 [] (float start, float end, float value) { return juce::jlimit (start, end, value); } };
-    }
-
-    return { lo, hi };
-}
-
-juce::String unitSuffix (const snaresim::ParameterSpec& spec)
-{
-    return spec.unit.empty() ? juce::String() : " " + juce::String (std::string (spec.unit));
-}
-} // namespace
 
 //==============================================================================
 SnareSimAudioProcessor::SnareSimAudioProcessor()
     : AudioProcessor (BusesProperties().withOutput ("Output", juce::AudioChannelSet::stereo(), true)),
-      apvts (*this, nullptr, stateTreeType, createParameterLayout()),
+      apvts (*this, nullptr, snaresim::plugin::PluginState::treeType, snaresim::plugin::createParameterLayout()),
       builder ([this] { return currentParameters(); })
 {
     for (const auto& spec : snaresim::parameterSpecs())
@@ -77,68 +42,6 @@ SnareSimAudioProcessor::~SnareSimAudioProcessor()
     // The builder's pending slot and retire queue delete what they still hold.
 }
 
-juce::AudioProcessorValueTreeState::ParameterLayout SnareSimAudioProcessor::createParameterLayout()
-{
-    juce::AudioProcessorValueTreeState::ParameterLayout layout;
-
-    for (const auto& spec : snaresim::parameterSpecs())
-    {
-        const juce::ParameterID id { juce::String (std::string (spec.key)), 1 };
-        const juce::String name (std::string (spec.name));
-        const juce::String unit (std::string (spec.unit));
-
-        switch (spec.kind)
-        {
-            case snaresim::ParamKind::toggle:
-                layout.add (std::make_unique<juce::AudioParameterBool> (
-                    id, name, spec.defaultValue >= 0.5,
-                    juce::AudioParameterBoolAttributes().withLabel (unit)));
-                break;
-
-            case snaresim::ParamKind::choice:
-            {
-                auto choices = juce::StringArray::fromTokens (juce::String (std::string (spec.choices)), "|", "");
-                const int numChoices = (int) std::lround (spec.maxValue - spec.minValue) + 1;
-
-                // The engine reads the choice index (0 .. n-1); name any choice the table leaves unnamed.
-                while (choices.size() < numChoices)
-                    choices.add (juce::String (choices.size()));
-
-                layout.add (std::make_unique<juce::AudioParameterChoice> (
-                    id, name, choices, (int) std::lround (spec.defaultValue),
-                    juce::AudioParameterChoiceAttributes().withLabel (unit)));
-                break;
-            }
-
-            case snaresim::ParamKind::integer:
-                layout.add (std::make_unique<juce::AudioParameterInt> (
-                    id, name, (int) std::lround (spec.minValue), (int) std::lround (spec.maxValue),
-                    (int) std::lround (spec.defaultValue),
-                    juce::AudioParameterIntAttributes().withLabel (unit)));
-                break;
-
-            case snaresim::ParamKind::continuous:
-            default:
-            {
-                const auto suffix = unitSuffix (spec);
-                auto attributes = juce::AudioParameterFloatAttributes()
-                                      .withLabel (unit)
-                                      .withStringFromValueFunction ([suffix] (float value, int maxLength)
-                                                                    {
-                                                                        auto text = juce::String (value, 4) + suffix;
-                                                                        return maxLength > 0 ? text.substring (0, maxLength) : text;
-                                                                    });
-
-                layout.add (std::make_unique<juce::AudioParameterFloat> (
-                    id, name, makeRange (spec), (float) spec.defaultValue, attributes));
-                break;
-            }
-        }
-    }
-
-    return layout;
-}
-
 const juce::String SnareSimAudioProcessor::getName() const
 {
     return JucePlugin_Name;
@@ -158,14 +61,6 @@ snaresim::ParameterSet SnareSimAudioProcessor::currentParameters() const
 const snaresim::Drum* SnareSimAudioProcessor::getDrum() const noexcept
 {
     return current != nullptr ? current->drum.get() : nullptr;
-}
-
-double SnareSimAudioProcessor::dampingFromDecay (double t60) noexcept
-{
-    if (! std::isfinite (t60) || t60 <= 0.0)
-        return snaresim::spec (snaresim::ParamId::damping).defaultValue;
-
-    return std::clamp (100.0 * std::log (t60 / 4.0) / std::log (0.15 / 4.0), 0.0, 100.0);
 }
 
 //==============================================================================
@@ -353,18 +248,6 @@ void SnareSimAudioProcessor::installPendingModel() noexcept
 //==============================================================================
 // Audio thread: parameters
 
-namespace
-{
-// A parameter value from the host, made safe for the engine: finite, in range, whole for
-// toggles, choices and integers.
-double sanitise (const snaresim::ParameterSpec& spec, float raw) noexcept
-{
-    double v = std::isfinite (raw) ? std::clamp ((double) raw, spec.minValue, spec.maxValue) : spec.defaultValue;
-    if (spec.kind != snaresim::ParamKind::continuous)
-        v = std::round (v);
-    return v;
-}
-} // namespace
 
 void SnareSimAudioProcessor::readParameterTargets() noexcept
 {
@@ -372,7 +255,7 @@ void SnareSimAudioProcessor::readParameterTargets() noexcept
     {
         const auto i = static_cast<std::size_t> (spec.id);
         const float raw = rawParameters[i]->load (std::memory_order_relaxed);
-        const double v = sanitise (spec, raw);
+        const double v = snaresim::plugin::sanitise (spec, (double) raw);
 
         if (smoothed[i])
         {
@@ -740,84 +623,14 @@ void SnareSimAudioProcessor::applyProgram (int index)
 
 void SnareSimAudioProcessor::getStateInformation (juce::MemoryBlock& destData)
 {
-    auto state = apvts.copyState();
-
-    if (auto xml = state.createXml())
-    {
-        xml->setAttribute (stateVersionAttribute, stateVersion);
-        copyXmlToBinary (*xml, destData);
-    }
+    snaresim::plugin::PluginState::write (apvts, destData);
 }
 
 void SnareSimAudioProcessor::setStateInformation (const void* data, int sizeInBytes)
 {
-    if (data == nullptr || sizeInBytes <= 0)
-        return;
-
-    const auto xml = getXmlFromBinary (data, sizeInBytes);
-
-    if (xml == nullptr || ! xml->hasTagName (stateTreeType.toString()))
-        return;
-
-    // Version 0 (no attribute) and 1: the first version's table, where the damping was the
-    // batter's T60 (batter_decay), high_damping was batter_high_damping and mic_top_position
-    // was listen_position. Unknown IDs are ignored; missing parameters take their defaults.
-    const int version = xml->getIntAttribute (stateVersionAttribute, 0);
-    std::array<std::optional<double>, snaresim::kNumParameters> values {};
-
-    for (const auto* child : xml->getChildIterator())
-    {
-        if (! child->hasTagName ("PARAM") || ! child->hasAttribute ("id") || ! child->hasAttribute ("value"))
-            continue;
-
-        auto key = child->getStringAttribute ("id").toStdString();
-        double value = child->getDoubleAttribute ("value");
-        if (! std::isfinite (value))
-            continue;
-
-        if (version < 2)
-        {
-            if (key == "batter_decay")
-            {
-                key = "damping";
-                value = dampingFromDecay (value);
-            }
-            else if (key == "batter_high_damping")
-                key = "high_damping";
-            else if (key == "listen_position")
-                key = "mic_top_position";
-        }
-
-        if (const auto id = snaresim::findParameter (key))
-            values[static_cast<std::size_t> (*id)] = value;
-    }
-
-    // A complete tree: replaceState leaves parameters missing from it at their current values.
-    // Its children in the order the processor's own tree has them (by ID), so that a restored
-    // state saves byte for byte as it was loaded.
-    std::array<const snaresim::ParameterSpec*, snaresim::kNumParameters> byKey {};
-    for (std::size_t i = 0; i < byKey.size(); ++i)
-        byKey[i] = &snaresim::parameterSpecs()[i];
-    std::sort (byKey.begin(), byKey.end(), [] (const auto* a, const auto* b) { return a->key < b->key; });
-
-    juce::ValueTree tree (stateTreeType);
-
-    for (const auto* specPointer : byKey)
-    {
-        const auto& spec = *specPointer;
-        const auto& stored = values[static_cast<std::size_t> (spec.id)];
-        const double value = stored.has_value() ? sanitise (spec, (float) *stored) : spec.defaultValue;
-
-        juce::ValueTree param ("PARAM");
-        param.setProperty ("id", juce::String (std::string (spec.key)), nullptr);
-        param.setProperty ("value", value, nullptr);
-        tree.appendChild (param, nullptr);
-    }
-
-    apvts.replaceState (tree);
-
     // A new grid, if the state needs one, is built now: the next block plays it.
-    builder.buildNowIfNeeded();
+    if (snaresim::plugin::PluginState::read (apvts, data, sizeInBytes))
+        builder.buildNowIfNeeded();
 }
 
 //==============================================================================

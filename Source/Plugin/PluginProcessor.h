@@ -35,12 +35,6 @@ class SnareSimAudioProcessor final : public juce::AudioProcessor,
                                      private juce::AsyncUpdater
 {
 public:
-    // Written into saved states; states without it are read as version 0.
-    // 1: the first version's table (batter_decay, batter_high_damping, listen_position).
-    // 2: today's table (damping, high_damping, mic_top_position, ...).
-    static constexpr int stateVersion = 2;
-    static constexpr const char* stateVersionAttribute = "stateVersion";
-
     SnareSimAudioProcessor();
     ~SnareSimAudioProcessor() override;
 
@@ -72,6 +66,7 @@ public:
     void changeProgramName (int, const juce::String&) override {}
 
     //==============================================================================
+    // The versioned state (PluginState.h).
     void getStateInformation (juce::MemoryBlock& destData) override;
     void setStateInformation (const void* data, int sizeInBytes) override;
 
@@ -111,10 +106,6 @@ public:
     // Only safe to use while processBlock is not running.
     const snaresim::Drum* getDrum() const noexcept;
 
-    static juce::AudioProcessorValueTreeState::ParameterLayout createParameterLayout();
-
-    // Damping (%) for a version-1 batter_decay T60 (s): 100 ln(T60 / 4) / ln(0.15 / 4), 0..100.
-    static double dampingFromDecay (double t60Seconds) noexcept;
 
 private:
     using DrumModel = snaresim::plugin::DrumModel;

@@ -6,6 +6,7 @@
 
 #include "ProcessorTestHelpers.h"
 #include "Drum.h"
+#include "PluginState.h"
 #include "Presets.h"
 
 #include <atomic>
@@ -291,11 +292,11 @@ TEST_CASE ("the factory presets are the programs", "[processor][programs]")
 
 TEST_CASE ("a version-1 state loads with its values mapped", "[processor][state]")
 {
-    CHECK (SnareSimAudioProcessor::dampingFromDecay (4.0) == Approx (0.0).margin (1e-12));
-    CHECK (SnareSimAudioProcessor::dampingFromDecay (0.15) == Approx (100.0));
-    CHECK (SnareSimAudioProcessor::dampingFromDecay (10.0) == 0.0);
-    CHECK (SnareSimAudioProcessor::dampingFromDecay (0.1) == 100.0);
-    CHECK (SnareSimAudioProcessor::dampingFromDecay (std::numeric_limits<double>::quiet_NaN()) == 25.0);
+    CHECK (snaresim::plugin::PluginState::dampingFromDecay (4.0) == Approx (0.0).margin (1e-12));
+    CHECK (snaresim::plugin::PluginState::dampingFromDecay (0.15) == Approx (100.0));
+    CHECK (snaresim::plugin::PluginState::dampingFromDecay (10.0) == 0.0);
+    CHECK (snaresim::plugin::PluginState::dampingFromDecay (0.1) == 100.0);
+    CHECK (snaresim::plugin::PluginState::dampingFromDecay (std::numeric_limits<double>::quiet_NaN()) == 25.0);
 
     for (const int version : { 1, 0 })
     {
