@@ -38,6 +38,9 @@ packages=(
     catch2
     lv2-dev
     libjack-jackd2-dev      # JACK support in the standalone application
+    xvfb xauth              # a virtual display for the editor tests (xvfb-run)
+    jalv jackd2             # a real LV2 host on a dummy JACK server, for the LV2 test
+    python3                 # the LV2 test's recording check, scripts/band_share.py
 )
 
 missing=()
