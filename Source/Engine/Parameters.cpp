@@ -136,4 +136,12 @@ std::string describeParameters()
     return out.str();
 }
 
+double sanitise(const ParameterSpec& spec, double raw) noexcept
+{
+    double v = std::isfinite(raw) ? std::clamp(raw, spec.minValue, spec.maxValue) : spec.defaultValue;
+    if (spec.kind != ParamKind::continuous)
+        v = std::round(v);
+    return v;
+}
+
 } // namespace snaresim

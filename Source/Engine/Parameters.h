@@ -106,6 +106,10 @@ private:
     std::array<double, kNumParameters> values {};
 };
 
+// A value from a host or a saved state, made safe for the engine: finite, in range, whole for
+// toggles, choices and integers (a non-finite value gives the default).
+double sanitise(const ParameterSpec& spec, double raw) noexcept;
+
 // Formats the table for --list-params: one line per parameter.
 std::string describeParameters();
 

@@ -2,7 +2,6 @@
 
 #include "ToggleParameter.h"
 
-#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -101,14 +100,6 @@ juce::AudioProcessorValueTreeState::ParameterLayout createParameterLayout()
     }
 
     return layout;
-}
-
-double sanitise (const ParameterSpec& spec, double raw) noexcept
-{
-    double v = std::isfinite (raw) ? std::clamp (raw, spec.minValue, spec.maxValue) : spec.defaultValue;
-    if (spec.kind != ParamKind::continuous)
-        v = std::round (v);
-    return v;
 }
 
 } // namespace snaresim::plugin

@@ -11,8 +11,4 @@ namespace snaresim::plugin
 
 juce::AudioProcessorValueTreeState::ParameterLayout createParameterLayout();
 
-// A value from a host or a saved state, made safe for the engine: finite, in range, whole
-// for toggles, choices and integers (non-finite values give the default).
-double sanitise (const ParameterSpec& spec, double raw) noexcept;
-
 } // namespace snaresim::plugin

@@ -1,10 +1,13 @@
 #include "Benchmark.h"
 
+#include "DrumPlayer.h"
+
 #include <juce_audio_basics/juce_audio_basics.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
 #include <vector>
 
 namespace snaresim::render
@@ -45,8 +48,8 @@ RenderJob benchmarkJob(const RenderJob& job)
     return result;
 }
 
-RenderStats benchmarkDrum(const std::function<std::unique_ptr<Drum>()>& makeDrum, const RenderPlan& plan,
-                          int blockSize, int repeats, const std::function<void(std::span<const float>)>& audio)
+RenderStats benchmarkDrum(const ParameterSet& params, const RenderPlan& plan, int blockSize, int repeats,
+                          const std::function<void(std::span<const float>)>& audio)
 {
     using Clock = std::chrono::steady_clock;
 
@@ -54,6 +57,8 @@ RenderStats benchmarkDrum(const std::function<std::unique_ptr<Drum>()>& makeDrum
     const juce::ScopedNoDenormals noDenormals;
 
     std::vector<float> block((std::size_t) blockSize);
+    std::vector<PlayerEvent> events;
+    events.reserve(plan.strikes.size());
     const auto numBlocks = (std::size_t) ((plan.numSamples + blockSize - 1) / blockSize);
     std::vector<Clock::duration> fastest(numBlocks, Clock::duration::max());
     Clock::duration rawWorst {}, slowestRun {};
@@ -65,9 +70,13 @@ RenderStats benchmarkDrum(const std::function<std::unique_ptr<Drum>()>& makeDrum
 
     for (int run = 0; run < repeats; ++run)
     {
-        const auto drum = makeDrum(); // a new drum each run: every run computes the same blocks
-        drum->setEnergyTracking(false);
-        drum->resetStats();
+        // A new player and drum each run: every run computes the same blocks.
+        DrumPlayer player([&params] { return params; });
+        player.prepareAndStart(plan.sampleRate_Hz, params);
+        player.stopBuilding();  // the parameters never change: nothing to build meanwhile
+        if (player.drum() == nullptr)
+            throw std::runtime_error("the drum cannot be built at this sample rate");
+
         const auto& strikes = plan.strikes;
         std::size_t nextStrike = 0, index = 0;
         Clock::duration runTotal {};
@@ -75,23 +84,20 @@ RenderStats benchmarkDrum(const std::function<std::unique_ptr<Drum>()>& makeDrum
         for (std::int64_t position = 0; position < plan.numSamples; ++index)
         {
             const int n = (int) std::min<std::int64_t>(blockSize, plan.numSamples - position);
-            const auto start = Clock::now();
-
-            // As the plug-in does with MIDI events: render up to the strike's sample, play the
-            // note, render on.
-            int done = 0;
-            while (done < n)
+            events.clear();
+            while (nextStrike < strikes.size() && strikes[nextStrike].sample < position + n)
             {
-                while (nextStrike < strikes.size() && strikes[nextStrike].sample <= position + done)
-                    drum->playNote(kBenchNote, strikes[nextStrike++].velocity);
-                int until = n;
-                if (nextStrike < strikes.size() && strikes[nextStrike].sample < position + n)
-                    until = (int) (strikes[nextStrike].sample - position);
-                drum->process(block.data() + done, until - done);
-                done = until;
+                const auto& strike = strikes[nextStrike++];
+                events.push_back(PlayerEvent::noteOn((int) (strike.sample - position), kBenchNote, strike.velocity));
             }
 
+            const auto start = Clock::now();
+            // As processBlock: every parameter to the player, then the block with its events.
+            for (const auto& spec : parameterSpecs())
+                player.setTarget(spec.id, params.get(spec.id));
+            player.process(block.data(), n, events);
             const auto elapsed = Clock::now() - start;
+
             runTotal += elapsed;
             rawWorst = std::max(rawWorst, elapsed);
             fastest[index] = std::min(fastest[index], elapsed);
@@ -119,13 +125,15 @@ RenderStats benchmarkDrum(const std::function<std::unique_ptr<Drum>()>& makeDrum
 
         if (run == 0)
         {
+            const auto& drum = *player.drum();
             stats.strikes = (int) nextStrike;
-            stats.solver = drum->solverStats();
-            figures.batterGridSpacing_m = drum->batter().grid().spacing();
-            figures.carryGridSpacing_m = drum->carry().grid().spacing();
-            figures.batterNodes = drum->batter().grid().numInterior();
-            figures.carryNodes = drum->carry().grid().numInterior();
-            figures.snarePoints = drum->snareContact().numPoints();
+            stats.solver = drum.solverStats();
+            stats.nonfiniteResets = player.nonFiniteResets();
+            figures.batterGridSpacing_m = drum.batter().grid().spacing();
+            figures.carryGridSpacing_m = drum.carry().grid().spacing();
+            figures.batterNodes = drum.batter().grid().numInterior();
+            figures.carryNodes = drum.carry().grid().numInterior();
+            figures.snarePoints = drum.snareContact().numPoints();
         }
     }
 

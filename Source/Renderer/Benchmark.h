@@ -1,18 +1,18 @@
 #pragma once
-// --bench: the render timed as the plug-in runs it. The drum comes from
-// makeDrumConfig(params, sampleRate) (EngineSetup.h without --lossless); the audio is rendered
-// in blocks of --block-size samples through Drum::process (the mix), a block being split at a
-// strike's sample as the plug-in splits its block at a MIDI event; each strike is
-// Drum::playNote(38, velocity) (the articulation path); energy tracking is off and denormals
-// are flushed to zero (juce::ScopedNoDenormals, as in the plug-in's processBlock). Every block,
-// its playNote calls included, is timed with std::chrono::steady_clock; the audio statistics
-// and the WAV are handled outside the timed section.
+// --bench: the render timed as the plug-in runs it. The drum is played by the real-time player
+// (DrumPlayer.h) exactly as the plug-in's processBlock calls it: the model built from the
+// parameters (makeDrumConfig, no --lossless), every parameter handed to the player at each
+// block of --block-size samples, each strike a note-on of note 38 (the articulation path) at
+// its sample, energy tracking off and denormals flushed to zero (juce::ScopedNoDenormals, as
+// in processBlock). Every block, parameters and events included, is timed with
+// std::chrono::steady_clock; the audio statistics and the WAV are handled outside the timed
+// section.
 
 #include "RenderJob.h"
 #include "RenderPlan.h"
 #include "Renderer.h"
 
-#include "Drum.h"
+#include "Parameters.h"
 
 #include <functional>
 #include <memory>
@@ -38,11 +38,11 @@ std::string_view scenarioName(const RenderJob& job);
 // the scenario's length (--bench-short: 0.25 s; with --midi: the usual last note + 2 s).
 RenderJob benchmarkJob(const RenderJob& job);
 
-// Renders the plan `repeats` times, each on a new drum from makeDrum, as described above.
+// Renders the plan `repeats` times, each on a new player and drum, as described above.
 // audio (may be empty) receives every block of the first run's mix. The result's `bench`
 // holds the block timings (each block's fastest run, and the raw extremes) and the grid
 // figures; the other figures are of the first run.
-RenderStats benchmarkDrum(const std::function<std::unique_ptr<Drum>()>& makeDrum, const RenderPlan& plan,
-                          int blockSize, int repeats, const std::function<void(std::span<const float>)>& audio);
+RenderStats benchmarkDrum(const ParameterSet& params, const RenderPlan& plan, int blockSize, int repeats,
+                          const std::function<void(std::span<const float>)>& audio);
 
 } // namespace snaresim::render

@@ -121,7 +121,7 @@ int render(const RenderJob& job)
     const auto midiStrikes = job.midiFile ? readMidiStrikes(*job.midiFile) : std::vector<Strike> {};
     const auto plan = makeRenderPlan(job, midiStrikes);
     const auto config = makeConfig(job, params);
-    const auto drum = makeDrum(config);
+    auto drum = makeDrum(config);
 
     const auto mic = job.selectedMic();
     const auto mics = micChannels(mic);
@@ -196,7 +196,7 @@ int render(const RenderJob& job)
     }
 
     const bool trackEnergy = job.lossless || job.energyCsv || job.energyPlot;
-    const auto stats = renderDrum(*drum, plan, mics, trackEnergy, sinks);
+    const auto stats = renderDrum(std::move(drum), params, plan, mics, trackEnergy, sinks);
 
     wav.finish();
     if (csv)
@@ -258,8 +258,7 @@ int benchmark(const RenderJob& commandLineJob)
         wav = std::make_unique<WavWriter>(*wavFile, plan.sampleRate_Hz, 1);
     }
 
-    const auto newDrum = [&] { return makeDrum(config); };
-    const auto stats = benchmarkDrum(newDrum, plan, job.selectedBlockSize(), job.selectedRepeats(), [&](std::span<const float> block) {
+    const auto stats = benchmarkDrum(params, plan, job.selectedBlockSize(), job.selectedRepeats(), [&](std::span<const float> block) {
         throwIfInterrupted(); // once per block, outside the timed section
         if (wav)
         {

@@ -1,6 +1,7 @@
 #include "Renderer.h"
 
 #include "DrumConfig.h"
+#include "DrumPlayer.h"
 
 #include <algorithm>
 #include <chrono>
@@ -77,64 +78,80 @@ struct Statistics
 
 } // namespace
 
-RenderStats renderDrum(Drum& drum, const RenderPlan& plan, std::span<const Mic> mics, bool trackEnergy,
-                       const RenderSinks& sinks)
+RenderStats renderDrum(std::unique_ptr<Drum> drumToPlay, const ParameterSet& params, const RenderPlan& plan,
+                       std::span<const Mic> mics, bool trackEnergy, const RenderSinks& sinks)
 {
     using Clock = std::chrono::steady_clock;
 
-    drum.setEnergyTracking(trackEnergy);
-    drum.resetStats();
+    drumToPlay->setEnergyTracking(trackEnergy);
+    drumToPlay->resetStats();
+
+    // The same player as the plug-in's, with this drum as it was built (--lossless included).
+    DrumPlayer player([params] { return params; });
+    player.startWith(std::move(drumToPlay), params);
 
     const std::size_t numChannels = mics.size();
     std::vector<std::vector<float>> blocks(numChannels, std::vector<float>((std::size_t) kBlockSize));
+    std::vector<float> mixBlock((std::size_t) kBlockSize);
     std::vector<std::span<const float>> channels(numChannels);
     std::vector<EnergyLedger> ledgers;
     ledgers.reserve((std::size_t) kBlockSize);
+    std::vector<PlayerEvent> events;
 
     const auto& strikes = plan.strikes;
-    const double maxSpeed = drum.config().strikeSpeedMax_m_per_s;
     std::size_t nextStrike = 0;
-
-    // Plays every strike scheduled at this sample (before the step that computes it).
-    auto strikeAt = [&](std::int64_t sample) {
-        while (nextStrike < strikes.size() && strikes[nextStrike].sample <= sample)
-            drum.strikeAtDefaultPoint(strikeSpeedFromVelocity(strikes[nextStrike++].velocity, maxSpeed));
-    };
 
     Statistics statistics;
     Clock::duration engineTime {};
     Clock::duration stateTime {}; // spent in sinks.state, inside the timed section
 
-    // Hands the drum after the step of this sample to sinks.state when the sample is in range.
-    auto readState = [&](std::int64_t sample) {
-        if (! sinks.state || sample < sinks.stateFrom || sample >= sinks.stateTo)
-            return;
-        const auto start = Clock::now();
-        sinks.state(sample, std::as_const(drum));
-        stateTime += Clock::now() - start;
+    // After every step: the other microphones, the energy and, in range, the drum's state.
+    struct Observer final : StepObserver
+    {
+        std::function<void(const Drum&)> after;
+        void afterStep(const Drum& drum) override { after(drum); }
+    } observer;
+
+    std::int64_t sample = 0;  // the sample the drum has just computed
+    int indexInBlock = 0;
+    observer.after = [&](const Drum& drum) {
+        for (std::size_t c = 0; c < numChannels; ++c)
+            if (mics[c] != Mic::mix)
+                blocks[c][(std::size_t) indexInBlock] = (float) drum.output(mics[c]);
+        if (trackEnergy)
+            ledgers.push_back(drum.energy());
+        if (sinks.state && sample >= sinks.stateFrom && sample < sinks.stateTo)
+        {
+            const auto start = Clock::now();
+            sinks.state(sample, drum);
+            stateTime += Clock::now() - start;
+        }
+        ++sample;
+        ++indexInBlock;
     };
 
     for (std::int64_t position = 0; position < plan.numSamples;)
     {
         const int n = (int) std::min<std::int64_t>(kBlockSize, plan.numSamples - position);
-        const auto start = Clock::now();
 
-        ledgers.clear();
-        for (int i = 0; i < n; ++i)
+        // Every strike scheduled in this block, on its sample (before the step that computes it).
+        events.clear();
+        while (nextStrike < strikes.size() && strikes[nextStrike].sample < position + n)
         {
-            strikeAt(position + i);
-            const double mix = drum.step();
-            readState(position + i);
-            for (std::size_t c = 0; c < numChannels; ++c)
-                blocks[c][(std::size_t) i] = (float) (mics[c] == Mic::mix ? mix : drum.output(mics[c]));
-            if (trackEnergy)
-                ledgers.push_back(drum.energy());
+            const auto& strike = strikes[nextStrike++];
+            events.push_back(PlayerEvent::strikeAt((int) std::max<std::int64_t>(0, strike.sample - position), strike.velocity));
         }
 
+        const auto start = Clock::now();
+        ledgers.clear();
+        indexInBlock = 0;
+        player.process(mixBlock.data(), n, events, &observer);
         engineTime += Clock::now() - start;
 
         for (std::size_t c = 0; c < numChannels; ++c)
         {
+            if (mics[c] == Mic::mix)
+                std::copy_n(mixBlock.begin(), n, blocks[c].begin());
             channels[c] = std::span<const float>(blocks[c].data(), (std::size_t) n);
             statistics.addAudio(channels[c]);
         }
@@ -156,10 +173,12 @@ RenderStats renderDrum(Drum& drum, const RenderPlan& plan, std::span<const Mic> 
     stats.peak = statistics.peak;
     stats.rms = statistics.finite > 0 ? std::sqrt(statistics.sumSquares / (double) statistics.finite) : 0.0;
     stats.nonfiniteSamples = statistics.nonfinite;
+    stats.nonfiniteResets = player.nonFiniteResets();
     stats.strikes = (int) nextStrike;
     if (trackEnergy)
         stats.energyRelativeDriftMax = statistics.relativeDrift();
-    stats.solver = drum.solverStats();
+    if (const auto* drum = player.drum())
+        stats.solver = drum->solverStats();
     return stats;
 }
 

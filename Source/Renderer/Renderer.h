@@ -1,5 +1,5 @@
 #pragma once
-// The render loop: plays a RenderPlan on a snaresim::Drum, strikes at their exact samples,
+// The render loop: plays a RenderPlan on a snaresim::Drum through the player, strikes at their exact samples,
 // and hands the audio of the asked microphones (and, with energy tracking, the energy
 // ledger of every sample; on request, the drum itself after the steps of a range of samples)
 // to the callers' sinks. Measures the time spent in the engine only.
@@ -8,9 +8,11 @@
 
 #include "Drum.h"
 #include "EnergyLedger.h"
+#include "Parameters.h"
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <span>
 
@@ -43,6 +45,7 @@ struct RenderStats
     double peak = 0.0;                  // max |sample| over the finite samples of every channel
     double rms = 0.0;                   // over the finite samples of every channel
     std::int64_t nonfiniteSamples = 0;  // over every channel
+    int nonfiniteResets = 0;            // times the player's guard reset a drum gone non-finite
     int strikes = 0;                    // strikes played
     // With energy tracking: max_n |balance_n - balance_0| / max_n total_n (0 when the drum
     // never held energy); NaN when the ledger went non-finite.
@@ -63,8 +66,10 @@ struct RenderSinks
     std::int64_t stateFrom = 0, stateTo = 0;
 };
 
-// mics: the signals to render, one channel each (drum.output(mic) after every step).
-RenderStats renderDrum(Drum& drum, const RenderPlan& plan, std::span<const Mic> mics, bool trackEnergy,
-                       const RenderSinks& sinks);
+// Plays the plan on `drum` (built from `params`) through the real-time player, as the plug-in
+// plays it. mics: the signals to render, one channel each (drum.output(mic) after every step;
+// Mic::mix is the player's output).
+RenderStats renderDrum(std::unique_ptr<Drum> drum, const ParameterSet& params, const RenderPlan& plan,
+                       std::span<const Mic> mics, bool trackEnergy, const RenderSinks& sinks);
 
 } // namespace snaresim::render

@@ -69,6 +69,7 @@ std::string formatJson(const RenderReport& r)
     object->setProperty("peak", r.stats.peak);
     object->setProperty("rms", r.stats.rms);
     object->setProperty("nonfinite_samples", (juce::int64) r.stats.nonfiniteSamples);
+    object->setProperty("nonfinite_resets", r.stats.nonfiniteResets);
     object->setProperty("strikes", r.stats.strikes);
     object->setProperty("strikes_outside", r.plan.strikesOutside);
     object->setProperty("preset", r.job.preset ? text(*r.job.preset) : juce::var());

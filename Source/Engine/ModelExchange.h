@@ -7,18 +7,19 @@
 // audio thread is done with go back to the builder thread through a small lock-free retire
 // queue and are deleted there. The audio thread never allocates, frees, locks or waits.
 
-#include <juce_core/juce_core.h>
-
 #include "Drum.h"
 #include "Parameters.h"
 
 #include <array>
 #include <cstddef>
 #include <atomic>
+#include <condition_variable>
 #include <functional>
 #include <memory>
+#include <mutex>
+#include <thread>
 
-namespace snaresim::plugin
+namespace snaresim
 {
 
 // What a model's grid depends on: the sample rate and the needsNewGrid parameters.
@@ -37,6 +38,7 @@ struct DrumModel
     ParameterSet built;             // the values the drum was built from
     GridKey requested;              // what was asked for (differs from `built` after a fallback)
     bool fellBack = false;          // the requested values failed; built from the defaults
+    bool fixed = false;             // a host's own drum, played as built (no live parameters)
 
     double sampleRate() const noexcept { return requested.sampleRate; }
 };
@@ -100,20 +102,20 @@ private:
 // The background thread: builds a model whenever the needsNewGrid parameters differ from the
 // last model it built or was told about (polling their atomics, so nobody has to wake it from
 // the audio thread), publishes it in `pending`, and deletes retired models.
-class ModelBuilder final : private juce::Thread
+class ModelBuilder final
 {
 public:
     using ParameterReader = std::function<ParameterSet()>;  // thread-safe (reads atomics)
 
     explicit ModelBuilder (ParameterReader readParameters);
-    ~ModelBuilder() override;
+    ~ModelBuilder();
 
     void start();
     void stop();
 
     // Held while a model is built and published; prepareToPlay holds it to install a model
     // itself and to set the target without racing the builder.
-    juce::CriticalSection& getLock() noexcept { return lock; }
+    std::mutex& getLock() noexcept { return lock; }
 
     // With getLock() held: models are built at this rate, and `current` is what is installed
     // (so no model is built for it). A sample rate <= 0 stops building.
@@ -130,13 +132,17 @@ public:
     static constexpr int pollIntervalMs = 15;
 
 private:
-    void run() override;
+    void run();
     void buildIfNeededLocked();
 
     ParameterReader readParameters;
-    juce::CriticalSection lock;
+    std::mutex lock;
+    std::thread thread;
+    std::mutex wakeLock;
+    std::condition_variable wake;
+    bool exitRequested = false;     // guarded by wakeLock
     double targetRate = 0.0;    // guarded by lock
     GridKey lastKey;            // guarded by lock: the newest model built or installed
 };
 
-} // namespace snaresim::plugin
+} // namespace snaresim

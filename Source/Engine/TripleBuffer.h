@@ -11,7 +11,7 @@
 #include <atomic>
 #include <memory>
 
-namespace snaresim::plugin
+namespace snaresim
 {
 
 template <typename T>
@@ -61,4 +61,4 @@ private:
     std::atomic<int> middle { 2 };  // shared: index | freshBit
 };
 
-} // namespace snaresim::plugin
+} // namespace snaresim

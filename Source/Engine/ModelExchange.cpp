@@ -2,11 +2,12 @@
 
 #include "DrumConfig.h"
 
+#include <chrono>
 #include <cmath>
 #include <exception>
 #include <new>
 
-namespace snaresim::plugin
+namespace snaresim
 {
 
 GridKey GridKey::of (const ParameterSet& params, double sampleRate) noexcept
@@ -39,10 +40,9 @@ std::unique_ptr<DrumModel> buildModel (const ParameterSet& params, double sample
     {
         throw;
     }
-    catch (const std::exception& e)
+    catch (const std::exception&)
     {
-        juce::ignoreUnused (e);
-        DBG ("SnareSim: cannot build the drum from the parameters (" << e.what() << "); using the defaults");
+        // The parameters cannot be simulated here: the defaults are tried next.
     }
 
     model->fellBack = true;
@@ -57,11 +57,9 @@ std::unique_ptr<DrumModel> buildModel (const ParameterSet& params, double sample
     {
         throw;
     }
-    catch (const std::exception& e)
+    catch (const std::exception&)
     {
-        // Nothing can be simulated at this rate: the processor outputs silence.
-        juce::ignoreUnused (e);
-        DBG ("SnareSim: cannot build the default drum at " << sampleRate << " Hz: " << e.what());
+        // Nothing can be simulated at this rate: the player outputs silence.
         model->drum.reset();
     }
 
@@ -70,7 +68,7 @@ std::unique_ptr<DrumModel> buildModel (const ParameterSet& params, double sample
 
 //==============================================================================
 ModelBuilder::ModelBuilder (ParameterReader reader)
-    : juce::Thread ("SnareSim model builder"), readParameters (std::move (reader))
+    : readParameters (std::move (reader))
 {
 }
 
@@ -81,14 +79,27 @@ ModelBuilder::~ModelBuilder()
 
 void ModelBuilder::start()
 {
-    if (! isThreadRunning())
-        startThread (juce::Thread::Priority::low);
+    if (thread.joinable())
+        return;
+
+    {
+        const std::lock_guard<std::mutex> g (wakeLock);
+        exitRequested = false;
+    }
+    thread = std::thread ([this] { run(); });
 }
 
 void ModelBuilder::stop()
 {
-    // A build in flight cannot be interrupted; give it ample time before JUCE gives up on it.
-    stopThread (30000);
+    if (! thread.joinable())
+        return;
+
+    {
+        const std::lock_guard<std::mutex> g (wakeLock);
+        exitRequested = true;
+    }
+    wake.notify_all();
+    thread.join();    // a build in flight finishes first
 }
 
 void ModelBuilder::setTargetLocked (double sampleRate, const GridKey& current)
@@ -99,7 +110,7 @@ void ModelBuilder::setTargetLocked (double sampleRate, const GridKey& current)
 
 void ModelBuilder::buildNowIfNeeded()
 {
-    const juce::ScopedLock sl (lock);
+    const std::lock_guard<std::mutex> g (lock);
     buildIfNeededLocked();
 }
 
@@ -134,21 +145,21 @@ void ModelBuilder::buildIfNeededLocked()
 
 void ModelBuilder::run()
 {
-    while (! threadShouldExit())
+    for (;;)
     {
         retired.deleteAll();
 
         {
-            const juce::ScopedLock sl (lock);
-
-            if (! threadShouldExit())
-                buildIfNeededLocked();
+            const std::lock_guard<std::mutex> g (lock);
+            buildIfNeededLocked();
         }
 
-        wait (pollIntervalMs);
+        std::unique_lock<std::mutex> w (wakeLock);
+        if (wake.wait_for (w, std::chrono::milliseconds (pollIntervalMs), [this] { return exitRequested; }))
+            break;
     }
 
     retired.deleteAll();
 }
 
-} // namespace snaresim::plugin
+} // namespace snaresim
