@@ -17,6 +17,7 @@
 #include "Microphones.h"
 #include "MidiStrikes.h"
 #include "Plotting.h"
+#include "ProgressLine.h"
 #include "RenderPlan.h"
 #include "Renderer.h"
 #include "Report.h"
@@ -171,11 +172,13 @@ int render(const RenderJob& job)
 
     RenderSinks sinks;
     std::vector<const float*> channelPointers(mics.size());
+    ProgressLine progress(! job.json, plan.numSamples, plan.sampleRate_Hz);
     sinks.audio = [&](std::span<const std::span<const float>> channels) {
         throwIfInterrupted(); // once per block
         for (std::size_t c = 0; c < channels.size(); ++c)
             channelPointers[c] = channels[c].data();
         wav.write(channelPointers.data(), (int) channels.front().size());
+        progress.update(wav.samplesWritten());
         if (spectrogram)
             spectrogram->add(channels[(std::size_t) analysed]);
     };
@@ -198,6 +201,7 @@ int render(const RenderJob& job)
     const bool trackEnergy = job.lossless || job.energyCsv || job.energyPlot;
     const auto stats = renderDrum(std::move(drum), params, plan, mics, trackEnergy, sinks);
 
+    progress.finish();
     wav.finish();
     if (csv)
         csv->finish();

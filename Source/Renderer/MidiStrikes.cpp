@@ -24,6 +24,17 @@ std::vector<Strike> readMidiStrikes(const std::filesystem::path& file)
         throw UserError("cannot read MIDI file " + name + ": "
                         + stream.getStatus().getErrorMessage().toStdString());
 
+    return readMidiStrikes(stream, name);
+}
+
+std::vector<Strike> readMidiStrikes(const void* data, std::size_t size, const std::string& name)
+{
+    juce::MemoryInputStream stream(data, size, false);
+    return readMidiStrikes(stream, name);
+}
+
+std::vector<Strike> readMidiStrikes(juce::InputStream& stream, const std::string& name)
+{
     juce::MidiFile midi;
     if (! midi.readFrom(stream, false) || midi.getTimeFormat() == 0)
         throw UserError("cannot read MIDI file " + name + ": not a valid Standard MIDI file");

@@ -3,8 +3,15 @@
 
 #include "RenderJob.h"
 
+#include <cstddef>
 #include <filesystem>
+#include <string>
 #include <vector>
+
+namespace juce
+{
+class InputStream;
+}
 
 namespace snaresim::render
 {
@@ -14,5 +21,9 @@ namespace snaresim::render
 // strike at the default point. Throws UserError when the file cannot be read or is not a
 // valid Standard MIDI file, or when a note-on lies beyond kMaxSeconds.
 std::vector<Strike> readMidiStrikes(const std::filesystem::path& file);
+
+// The same from bytes in memory or a stream; messages name the source as `name` (quoted).
+std::vector<Strike> readMidiStrikes(const void* data, std::size_t size, const std::string& name);
+std::vector<Strike> readMidiStrikes(juce::InputStream& stream, const std::string& name);
 
 } // namespace snaresim::render

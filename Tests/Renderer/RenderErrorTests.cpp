@@ -11,6 +11,7 @@
 #include <chrono>
 #include <csignal>
 #include <fstream>
+#include <iostream>
 #include <thread>
 
 using namespace rendertest;
@@ -215,26 +216,41 @@ TEST_CASE("bad input: unwritable outputs fail before rendering and leave nothing
     fs::permissions(locked, fs::perms::owner_all);
 }
 
-TEST_CASE("interrupted: SIGTERM during a render leaves no output and no temporary", "[renderer][errors]")
+TEST_CASE("interrupted: SIGINT, SIGTERM or SIGHUP during a render leaves no output, no temporary, and an older file intact", "[renderer][errors]")
 {
-    TempDir dir;
-    const auto capture = dir.root() / "capture";
-    const int pid = startRenderer({ "-o", (dir.out() / "long.wav").string(), "--energy-csv",
-                                    (dir.out() / "long.csv").string(), "--energy-plot",
-                                    (dir.out() / "long-energy.png").string(), "--spectrogram",
-                                    (dir.out() / "long-spectrum.png").string(), "--hit", "0:100", "--seconds", "600" },
-                                  capture);
+    int tried = 0;
+    for (const int signalNumber : { SIGINT, SIGTERM, SIGHUP })
+    {
+        INFO("signal " << signalNumber);
+        TempDir dir;
+        const auto capture = dir.root() / "capture";
 
-    // Wait until it is rendering (its four temporaries exist), then stop it.
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-    while (entries(dir.out()).size() < 4 && std::chrono::steady_clock::now() < deadline)
-        std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    CHECK(entries(dir.out()).size() == 4);
-    ::kill(pid, SIGTERM);
+        // A file of that name from before: it must survive the interrupted render unchanged.
+        const auto target = dir.out() / "long.wav";
+        {
+            std::ofstream old(target);
+            old << "an older render";
+        }
 
-    const auto run = waitForRenderer(pid, capture);
-    INFO("stderr: " << run.err);
-    CHECK(run.exitCode == 128 + SIGTERM);
-    CHECK(lines(run.err).size() == 1);
-    CHECK(entries(dir.out()).empty());
+        const int pid = startRenderer({ "-o", target.string(), "--energy-csv", (dir.out() / "long.csv").string(),
+                                        "--energy-plot", (dir.out() / "long-energy.png").string(), "--spectrogram",
+                                        (dir.out() / "long-spectrum.png").string(), "--hit", "0:100", "--seconds", "600" },
+                                      capture);
+
+        // Wait until it is rendering (its four temporaries exist beside the old file), then stop it.
+        const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+        while (entries(dir.out()).size() < 5 && std::chrono::steady_clock::now() < deadline)
+            std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        CHECK(entries(dir.out()).size() == 5);
+        ::kill(pid, signalNumber);
+
+        const auto run = waitForRenderer(pid, capture);
+        INFO("stderr: " << run.err);
+        CHECK(run.exitCode == 128 + signalNumber);
+        CHECK(lines(run.err).size() == 1);
+        CHECK(entries(dir.out()) == std::vector<std::string> { "long.wav" });
+        CHECK(readText(target) == "an older render");
+        ++tried;
+    }
+    std::cout << "interrupted renders: " << tried << " signals (SIGINT, SIGTERM, SIGHUP), exit 128 + N, nothing left behind\n";
 }

@@ -1,0 +1,170 @@
+// A long MIDI render as a batch script or a person at a terminal runs it: 100 000 notes,
+// rendered with a progress line when stderr is a terminal (and only then, and not with --json),
+// in memory that grows with neither the number of notes beyond their list nor the length.
+
+#include "RendererTestSupport.h"
+
+#include <catch2/catch.hpp>
+
+#include <fcntl.h>
+#include <pty.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cmath>
+#include <fstream>
+#include <iostream>
+
+using namespace rendertest;
+
+namespace
+{
+
+// A format-0 Standard MIDI file: `notes` note-ons of note 38 (velocity 100), one every
+// millisecond (1000 ticks a quarter note at 1 s a quarter note), in running status.
+void writeMidi(const fs::path& file, int notes)
+{
+    std::string track;
+    track += std::string("\x00\xff\x51\x03\x0f\x42\x40", 7);    // tempo: 1 000 000 us a quarter note
+    for (int i = 0; i < notes; ++i)
+    {
+        track += i == 0 ? std::string("\x00\x99", 2) : std::string("\x01", 1);
+        track += std::string("\x26\x64", 2);
+    }
+    track += std::string("\x00\xff\x2f\x00", 4);
+
+    auto be32 = [](std::uint32_t v) { return std::string { (char) (v >> 24), (char) (v >> 16), (char) (v >> 8), (char) v }; };
+    std::ofstream out(file, std::ios::binary);
+    out << "MThd" << be32(6) << std::string("\x00\x00\x00\x01\x03\xe8", 6) << "MTrk" << be32((std::uint32_t) track.size()) << track;
+}
+
+struct PtyRun
+{
+    int exitCode = -1;
+    std::string terminal;   // what the renderer wrote to the terminal (stderr)
+    std::string out;        // its stdout
+    long maxRss_kB = 0;
+};
+
+// Runs snaresim-render with stderr (and stdin) on a pseudo-terminal and stdout to a file.
+PtyRun runOnTerminal(const std::vector<std::string>& args, const fs::path& stdoutFile)
+{
+    std::vector<std::string> all { SNARESIM_RENDER_EXE };
+    all.insert(all.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (auto& a : all)
+        argv.push_back(a.data());
+    argv.push_back(nullptr);
+
+    int master = -1;
+    const pid_t pid = forkpty(&master, nullptr, nullptr, nullptr);
+    REQUIRE(pid >= 0);
+    if (pid == 0)
+    {
+        const int fd = ::open(stdoutFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (fd < 0 || ::dup2(fd, STDOUT_FILENO) < 0)
+            ::_exit(126);
+        ::execv(argv[0], argv.data());
+        ::_exit(127);
+    }
+
+    PtyRun run;
+    char buffer[4096];
+    for (;;)
+    {
+        const ssize_t n = ::read(master, buffer, sizeof buffer);
+        if (n > 0)
+            run.terminal.append(buffer, (size_t) n);
+        else if (n < 0 && errno == EINTR)
+            continue;
+        else
+            break;  // EIO: the renderer closed the terminal (it exited)
+    }
+    ::close(master);
+
+    int status = 0;
+    rusage usage {};
+    while (::wait4(pid, &status, 0, &usage) < 0)
+        REQUIRE(errno == EINTR);
+    run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    run.maxRss_kB = usage.ru_maxrss;
+    run.out = readText(stdoutFile);
+    return run;
+}
+
+// Peak resident size of a render with stderr on a pipe (ordinary capture).
+long peakRssOfRun(const std::vector<std::string>& args, const fs::path& capture, RunResult& result)
+{
+    const int pid = startRenderer(args, capture);
+    int status = 0;
+    rusage usage {};
+    while (::wait4(pid, &status, 0, &usage) < 0)
+        REQUIRE(errno == EINTR);
+    result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    result.out = readText(capture / "stdout.txt");
+    result.err = readText(capture / "stderr.txt");
+    return usage.ru_maxrss;
+}
+
+// A cheap drum: coarse grids (the coarsest 16 kHz allows), one wire, no air, at 16 kHz.
+std::vector<std::string> cheap(std::vector<std::string> args)
+{
+    for (const char* a : { "--sample-rate", "16000", "--set", "grid_coarseness=2", "--set", "snare_count=1", "--model", "none" })
+        args.emplace_back(a);
+    return args;
+}
+
+} // namespace
+
+TEST_CASE("a MIDI file of 100 000 notes renders with a progress line on a terminal, in bounded memory", "[renderer][long]")
+{
+    TempDir dir;
+    const auto many = dir.in() / "many.mid", few = dir.in() / "few.mid";
+    writeMidi(many, 100000);    // 100 s of notes, one every millisecond
+    writeMidi(few, 1000);       // the first second of them
+
+    // On a terminal: the progress line, then the summary on stdout.
+    const auto run = runOnTerminal(cheap({ "-o", (dir.out() / "many.wav").string(), "--midi", many.string() }),
+                                   dir.root() / "stdout.txt");
+    INFO("terminal: " << run.terminal);
+    REQUIRE(run.exitCode == 0);
+    const auto wav = readWav(dir.out() / "many.wav");
+    REQUIRE(wav.opened);
+    CHECK(wav.length == std::llround((99.999 + 2.0) * 16000));     // the last note + 2 s
+    CHECK(run.terminal.find("\rsnaresim-render: ") != std::string::npos);
+    CHECK(run.terminal.find("s of audio") != std::string::npos);
+    CHECK(run.terminal.find("100%") != std::string::npos);
+    CHECK(run.out.find("strikes") != std::string::npos);
+
+    // The same on a terminal with --json: no progress, stdout is one JSON object.
+    const auto quiet = runOnTerminal(cheap({ "-o", (dir.out() / "many-json.wav").string(), "--midi", many.string(), "--json" }),
+                                     dir.root() / "stdout-json.txt");
+    CHECK(quiet.exitCode == 0);
+    CHECK(quiet.terminal.find("snaresim-render") == std::string::npos);
+    CHECK(parseJson(quiet.out).getProperty("strikes", 0).operator int() == 100000);
+
+    // Stderr on a pipe: nothing on it. And the memory: the 100 000 notes against 1 000 notes
+    // rendered for as long, and those against a render a tenth as long.
+    RunResult manyRun, fewRun, shortRun;
+    const long manyRss = peakRssOfRun(cheap({ "-o", (dir.out() / "a.wav").string(), "--midi", many.string() }), dir.root() / "capture", manyRun);
+    const long fewRss = peakRssOfRun(cheap({ "-o", (dir.out() / "b.wav").string(), "--midi", few.string(), "--seconds", "102" }),
+                                     dir.root() / "capture", fewRun);
+    const long shortRss = peakRssOfRun(cheap({ "-o", (dir.out() / "c.wav").string(), "--midi", few.string(), "--seconds", "10.2" }),
+                                       dir.root() / "capture", shortRun);
+    REQUIRE(manyRun.exitCode == 0);
+    REQUIRE(fewRun.exitCode == 0);
+    REQUIRE(shortRun.exitCode == 0);
+    CHECK(manyRun.err.empty());
+    CHECK(fewRun.err.empty());
+
+    // The output is streamed to disk: ten times the length costs no memory to speak of (the
+    // 102 s of audio would be 6.5 MB held). The notes cost their list: 100 000 of them at most
+    // 200 bytes each, MIDI parsing included.
+    CHECK(fewRss - shortRss < 2 * 1024);
+    CHECK(manyRss - fewRss < 100000 * 200 / 1024);
+    std::cout << "100 000-note MIDI file: 102 s of audio at 16 kHz rendered with a progress line on a terminal; peak RSS "
+              << manyRss / 1024 << " MB (1 000 notes for as long: " << fewRss / 1024 << " MB; a tenth as long: "
+              << shortRss / 1024 << " MB)\n";
+}
