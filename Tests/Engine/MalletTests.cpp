@@ -1,4 +1,4 @@
-// The mallet strikes and rebounds (paper section 2.4, 4.1).
+// The mallet strikes and rebounds (eq. 9-11, 26-27, 44-45).
 
 #include "TestDrums.h"
 
@@ -50,7 +50,7 @@ TEST_CASE("the mallet rebounds after a physically sensible contact", "[mallet]")
     const double f01 = j01 * std::sqrt(cfg.batter.tension_N_per_m / rho) / (2.0 * std::numbers::pi * R);
     const double m01 = rho * std::numbers::pi * R * R * std::pow(std::cyl_bessel_j(1.0, j01), 2);
     const double K01 = std::pow(2.0 * std::numbers::pi * f01, 2) * m01;
-    CHECK(K01 == Approx(14.9e3).epsilon(0.02)); // physics-notes section 3
+    CHECK(K01 == Approx(14.9e3).epsilon(0.02));
     const double phi = std::cyl_bessel_j(0.0, j01 * strikeRadius);
     const double halfPeriod = std::numbers::pi * std::sqrt((M * phi * phi + m01) / K01);
 

@@ -19,7 +19,7 @@ TEST_CASE("the head grid follows the stability bound eq. 39", "[membrane]")
     const DrumConfig cfg = test::losslessHead();
     const Membrane head(cfg.batter, 1.0 / cfg.sampleRate_Hz);
     const double c = std::sqrt(cfg.batter.tension_N_per_m / cfg.batter.density_kg_per_m2);
-    // h = sqrt(2) c k at the bound: 2.98 mm and about 11 000 points (physics-notes section 2).
+    // h = sqrt(2) c k at the bound: 2.98 mm and about 11 000 points.
     CHECK(head.grid().spacing() == Approx(std::sqrt(2.0) * c / 44100.0).epsilon(1e-12));
     CHECK(head.grid().spacing() == Approx(2.98e-3).epsilon(0.01));
     CHECK(head.grid().numInterior() == Approx(std::numbers::pi * std::pow(0.1778 / head.grid().spacing(), 2)).epsilon(0.03));

@@ -40,7 +40,7 @@ TEST_CASE("out-of-range and non-finite values are refused or clamped", "[paramet
     CHECK(p.get(ParamId::batterTension) == spec(ParamId::batterTension).defaultValue);
 }
 
-TEST_CASE("the defaults give the physics-notes drum", "[parameters]")
+TEST_CASE("the defaults give the 14 x 5.5 inch drum of docs/MODEL.md", "[parameters]")
 {
     const DrumConfig c = makeDrumConfig(ParameterSet {}, 48000.0);
     CHECK(c.batter.tension_N_per_m == 3050.0);

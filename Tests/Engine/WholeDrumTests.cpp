@@ -1,4 +1,4 @@
-// The whole drum (paper section 2-4 with the reduced cavity): energy, collisions, the snares'
+// The whole drum (eq. 1-50, the air box replaced by the reduced cavity): energy, collisions, the snares'
 // sound, and the cavity's coupling of the heads.
 
 #include "SpectrumPeaks.h"
@@ -66,7 +66,7 @@ TEST_CASE("lossless whole drum with the paper's 7 snares and mallet conserves en
     DrumConfig cfg = test::wholeDrum();
     cfg.snares.count = 7;
     cfg.snares.scheme = schemeOf(GENERATE(0, 1));
-    cfg.mallet.mass_kg = 0.028; // paper section 5.1: M = 0.028 kg at -5 m/s
+    cfg.mallet.mass_kg = 0.028; // the paper's energy test: M = 0.028 kg at 5 m/s, 7 snares
     SolverStats stats;
     const Drift drift = losslessDrift(cfg, 5.0, 44100, stats);
     INFO(nameOf(cfg.snares.scheme) << ": relative energy variation " << drift.relative);

@@ -7,8 +7,9 @@
 // the snapshot and the meters, and writes createComponentSnapshot as PNG.
 //
 // With --check it then also checks the editor (a control per parameter of the table, of the
-// right kind and attached; the preset selector; the brief's value texts; the layout at the
-// size limits) and exits 1 when something is wrong: the CTest smoke test of the editor.
+// right kind and attached; the preset selector; the value texts of the three main controls;
+// the layout at the size limits) and exits 1 when something is wrong: the CTest smoke test of
+// the editor.
 //
 // It needs no X server: JUCE renders components into images without a window (on a machine
 // with a display it connects to it, harmlessly).
@@ -217,7 +218,7 @@ int runChecks (SnareSimAudioProcessor& processor, SnareSimAudioProcessorEditor& 
         }
     }
 
-    // The brief's three controls read as asked.
+    // The three main controls read as their value texts should.
     const auto expectText = [&] (std::string_view key, double value, const char* text)
     {
         const auto& spec = snaresim::spec (*snaresim::findParameter (key));
