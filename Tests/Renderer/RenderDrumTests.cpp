@@ -355,6 +355,24 @@ TEST_CASE("plots: --energy-plot and --spectrogram write PNG images", "[renderer]
         requirePicture(spectrum, 1200, 700);
         CHECK(distinctColours(spectrum, 200, 100, 800, 500) > 10);
         CHECK(entries(dir.out()) == std::vector<std::string> { "drum.wav", "energy.png", "spectrum.png" });
+
+        // Lossless: the total stays at the strike's energy, (1/2) M v^2 at velocity 127, from
+        // the left edge on; the logarithmic axis ends at the decade above it (1 J).
+        const auto params = snaresim::ParameterSet {};
+        const double v = snaresim::strikeSpeedFromVelocity(127, params.get(snaresim::ParamId::strikeSpeedMax));
+        const double strikeEnergy = 0.5 * params.get(snaresim::ParamId::malletMass) * v * v;
+        const double axisTop = snaresim::render::EnergyPlot::componentTop(strikeEnergy);
+        CHECK(axisTop == 1.0);
+        const double decades = snaresim::render::EnergyPlot::componentDecades;
+        const auto area = snaresim::render::EnergyPlot::componentArea();
+        const double yTotal = area.getBottom() - (std::log10(strikeEnergy / axisTop) + decades) / decades * area.getHeight();
+        const auto image = loadImage(energy);
+        REQUIRE(image.isValid());
+        const auto totalTop = extremePixel(image, area, isBlack, true);
+        REQUIRE(totalTop.has_value());
+        INFO("total: top at pixel " << totalTop->toString() << ", expected y " << yTotal);
+        CHECK(std::abs(totalTop->y + 0.5 - yTotal) <= kCurveTolerance_px);
+        CHECK(totalTop->x <= area.getX() + 2.0f);
     }
 }
 
@@ -497,10 +515,22 @@ TEST_CASE("plots: --snare-plot writes a PNG of the snare wires", "[renderer]")
         CHECK(entries(dir.out()) == std::vector<std::string> { "drum.wav", "snares.png" });
     }
 
+    // No wire point touches: the count's line lies on the axis's 0, the panel's bottom edge
+    // (which the frame covers), so no curve pixel shows above it.
+    auto checkNoContact = [&] {
+        const auto image = loadImage(snares);
+        REQUIRE(image.isValid());
+        const auto area = snaresim::render::SnarePlot::contactArea();
+        const auto top = extremePixel(image, area, isBlueCurve, true);
+        INFO("contact count's highest pixel: " << (top ? top->toString() : juce::String("none")));
+        CHECK((! top.has_value() || top->y + 0.5 >= area.getBottom() - kCurveTolerance_px));
+    };
+
     SECTION("snares thrown off: the carry head alone")
     {
         renderOk(dir, wav, with(kQuick, { "--set", "snares_engaged=0", "--snare-plot", snares.string() }));
         checkImage(10, 1);
+        checkNoContact();
     }
 
     SECTION("no strike inside the render")
@@ -512,5 +542,19 @@ TEST_CASE("plots: --snare-plot writes a PNG of the snare wires", "[renderer]")
         REQUIRE(run.exitCode == 0);
         CHECK(number(parseJson(run.out), "strikes") == 0.0);
         requirePicture(snares, 1200, 700);
+        checkNoContact();
+        // Nothing moves: the carry head's line runs flat along the middle of the top panel (a
+        // range of +-0.001 mm around 0 when the data do not spread).
+        const auto image = loadImage(snares);
+        const auto area = snaresim::render::SnarePlot::wireArea();
+        const auto top = extremePixel(image, area, isBlueCurve, true);
+        const auto bottom = extremePixel(image, area, isBlueCurve, false);
+        REQUIRE(top.has_value());
+        REQUIRE(bottom.has_value());
+        INFO("carry head's line from row " << top->y << " to " << bottom->y << ", the middle at " << area.getCentreY());
+        CHECK(std::abs(top->y + 0.5 - area.getCentreY()) <= kCurveTolerance_px);
+        CHECK(std::abs(bottom->y + 0.5 - area.getCentreY()) <= kCurveTolerance_px);
+        CHECK(top->x <= area.getX() + 2.0f);
+        CHECK(rightmostInRow(image, area, top->y, isBlueCurve) >= area.getRight() - 3.0f);
     }
 }

@@ -348,7 +348,11 @@ TEST_CASE("energy csv: --energy-csv writes the header and one row per sample", "
             firstBalance = fields[9];
         maxDeviation = std::max(maxDeviation, std::abs(fields[9] - firstBalance));
     }
-    CHECK(maxTotal > 0.0);                       // the strike put energy in
+    CHECK(maxTotal > 0.0);                       // the strike put energy in:
+    // the mallet's (1/2) M v^2 at velocity 100, less what the first step's losses took (1e-6 of it)
+    const snaresim::ParameterSet defaults;
+    const double v = snaresim::strikeSpeedFromVelocity(100, defaults.get(snaresim::ParamId::strikeSpeedMax));
+    CHECK(maxTotal == Approx(0.5 * defaults.get(snaresim::ParamId::malletMass) * v * v).epsilon(1e-5));
     CHECK(maxDeviation <= 1.0e-9 * maxTotal);    // balance constant (lossy run)
 
     CHECK(entries(dir.out()) == std::vector<std::string> { "e.csv", "e.wav" });
