@@ -1,8 +1,8 @@
 #pragma once
-// The enclosed air as a uniform-pressure adiabatic cavity coupling the two heads
-// (physics-notes section 3): with both heads' displacements positive upward the volume
-// change is dV = h_b^2 sum(w_b) - h_c^2 sum(w_c) and p = -(rho_a c_a^2 / V0) dV; the pressure
-// pushes the batter up (+p) and the carry head down (-p).
+// The enclosed air as a uniform-pressure adiabatic cavity coupling the two heads, in place of
+// the paper's air box (eq. 5-8; docs/MODEL.md, "Cavity"): with both heads' displacements
+// positive upward the volume change is dV = h_b^2 sum(w_b) - h_c^2 sum(w_c) and
+// p = -(rho_a c_a^2 / V0) dV; the pressure pushes the batter up (+p) and the carry head down (-p).
 //
 // Explicit form: p^n from dV^n. Its energy is (K/2) dV^{n+1} dV^n, which can dip below
 // (K/2)(mu_t+ dV)^2 by at most (K k^2 / 8)(dt+ dV)^2; Membrane reserves that share of its

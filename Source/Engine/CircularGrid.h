@@ -1,5 +1,5 @@
 #pragma once
-// A square grid of spacing h clipped to a disc of radius R (paper section 3.1), stored as a
+// A square grid of spacing h clipped to a disc of radius R (eq. 1, 22-24), stored as a
 // padded N x N array so that the 5-point stencil needs no bounds checks: nodes outside the
 // disc are fixed at zero (the fixed rim).
 
@@ -11,7 +11,7 @@
 namespace snaresim
 {
 
-// A grid distribution g over a few nodes, normalised so that h^2 sum(g) = 1 (section 3.3).
+// A grid distribution g over a few nodes, normalised so that h^2 sum(g) = 1 (as g_b in eq. 26).
 // Used for the mallet's contact patch g_b and the listening point.
 struct GridDistribution
 {

@@ -1,5 +1,5 @@
 #pragma once
-// The assembled model (paper section 2-4, air as the reduced cavity): batter and carry heads,
+// The assembled model (eq. 1-50, the air box replaced by the reduced cavity): batter and carry heads,
 // mallets with their contact, snare wires with their collisions and attached ends, and the
 // cavity between the heads. The only class the plugin and the renderer talk to.
 

@@ -136,7 +136,7 @@ DrumConfig mapParameters(const ParameterSet& p, double sampleRate_Hz) noexcept
     DrumConfig c;
     c.sampleRate_Hz = sampleRate_Hz;
     // Damping d (0..100 %) sets the T60 of the heads' lowest modes: 4 s * (0.15 / 4)^(d / 100);
-    // sigma0 = 3 ln(10) / T60 (physics-notes section 2).
+    // sigma0 = 3 ln(10) / T60 (the amplitude falls by 60 dB in T60).
     const double t60 = 4.0 * std::pow(0.15 / 4.0, p.get(ParamId::damping) / 100.0);
     const double sigma0 = 3.0 * std::log(10.0) / t60;
     const double sigma1 = p.get(ParamId::highDamping);
@@ -151,7 +151,7 @@ DrumConfig mapParameters(const ParameterSet& p, double sampleRate_Hz) noexcept
                                 : p.get(ParamId::carryTension);
     c.carry.sigma0_per_s = sigma0;
     c.carry.sigma1_m2_per_s = sigma1;
-    // Grids designed for the largest values the controls allow (physics-notes section 1).
+    // Grids designed for the largest values the controls allow: moving them changes coefficients only.
     for (MembraneSpec* m : { &c.batter, &c.carry })
     {
         m->gridSigma1_m2_per_s = spec(ParamId::highDamping).maxValue;

@@ -63,7 +63,7 @@ struct SnareSpec
 enum class AirModel
 {
     none,   // heads uncoupled
-    cavity  // uniform-pressure adiabatic cavity (physics-notes section 3)
+    cavity  // uniform-pressure adiabatic cavity (Cavity.h)
 };
 
 struct CavitySpec

@@ -13,13 +13,12 @@ namespace
 using P = ParamId;
 using S = ParamScale;
 
-// Ranges chosen for a 14 x 5.5 inch snare (../shared/reference/physics-notes.md, section 2).
 constexpr auto C = ParamKind::continuous;
 constexpr auto I = ParamKind::integer;
 constexpr auto B = ParamKind::toggle;
 constexpr auto K = ParamKind::choice;
 
-// Ranges chosen for a 14 x 5.5 inch snare (../shared/reference/physics-notes.md, section 2).
+// Ranges chosen for a 14 x 5.5 inch snare (its defaults: docs/MODEL.md, "Defaults").
 // The head and wire grids are designed for the largest tension, high damping and
 // shallowest shell allowed here, so moving those controls never needs a new grid.
 constexpr std::array<ParameterSpec, kNumParameters> kSpecs {{

@@ -14,7 +14,7 @@ namespace snaresim
 
 enum class ParamId : std::size_t
 {
-    // the three controls of the brief
+    // the three main controls
     batterTension,
     snareTension,
     damping,

@@ -1,8 +1,9 @@
 #pragma once
 // The snare wires: N lossy strings (eq. 12), discretised as eq. (28) on a grid of spacing h_s
 // chosen from eq. (40). Each wire lies under the carry head along a chord (the affine map pi
-// of section 2.5). End nodes carry half a cell of mass and are held to the head by the
-// attachment forces of SnareContact (eq. 17-18, 32-33); interior nodes collide with the head.
+// of eq. 13). End nodes carry half a cell of mass (no ghost point, so eq. 32b-33 are not used)
+// and are held to the head by the attachment forces of SnareContact (eq. 17-18, 32a, 48-49);
+// interior nodes collide with the head.
 // Energy (eq. 38 without the collision potential, which SnareContact owns):
 //   h_s sum_l w_l rho/2 (dt+ u_l)^2 + T/(2 h_s) sum_seg du^n du^{n+1} - rho sigma1/(2 k h_s) sum_seg (d(u^{n+1}-u^n))^2,
 // with trapezoid weights w_0 = w_M = 1/2; h^{n+1/2} - h^{n-1/2} = -k q^n exactly, q^n >= 0.

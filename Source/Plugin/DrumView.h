@@ -32,6 +32,10 @@ public:
     // True once a snapshot has been shown.
     bool hasShownSnapshot() const noexcept { return hasSnapshot; }
 
+    // Where the two heads are drawn (in this component's coordinates; for tests).
+    juce::Rectangle<float> getBatterDisc() const noexcept { return batterDisc; }
+    juce::Rectangle<float> getCarryDisc() const noexcept { return carryDisc; }
+
     void paint (juce::Graphics&) override;
     void resized() override;
 

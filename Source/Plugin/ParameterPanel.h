@@ -21,7 +21,7 @@ class ParameterControl final : public juce::Component
 public:
     enum class Style
     {
-        largeKnob,  // the brief's three controls: name above, big knob, value below
+        largeKnob,  // the three main controls: name above, big knob, value below
         row         // name on the left, slider / switch / combo box and value on the right
     };
 

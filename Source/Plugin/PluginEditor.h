@@ -1,5 +1,5 @@
 #pragma once
-// The SnareSim editor: the brief's three controls as large knobs, the other parameters in
+// The SnareSim editor: the three main controls as large knobs, the other parameters in
 // panels by the table's group, a preset selector, the live picture of the drum, a CPU meter and
 // the engine's status counters, and the MIDI note map.
 //

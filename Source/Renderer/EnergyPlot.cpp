@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <limits>
 #include <string>
+#include <tuple>
 
 namespace snaresim::render
 {
@@ -14,7 +15,7 @@ namespace
 {
 
 constexpr std::int64_t kMaxBuckets = 4000; // about 7 per pixel column of a panel
-constexpr int kDecades = 7;                 // shown by the component panel
+constexpr int kDecades = EnergyPlot::componentDecades; // shown by the component panel
 
 struct SeriesStyle
 {
@@ -102,8 +103,8 @@ juce::Image EnergyPlot::draw() const
     auto image = plot::whiteImage(width, height);
     juce::Graphics g(image);
 
-    drawBalancePanel(g, { 120.0f, 50.0f, 530.0f, 470.0f });
-    drawComponentPanel(g, { 790.0f, 50.0f, 440.0f, 470.0f }, { 1248.0f, 50.0f, 140.0f, 0.0f });
+    drawBalancePanel(g, balanceArea());
+    drawComponentPanel(g, componentArea(), { 1248.0f, 50.0f, 140.0f, 0.0f });
     return image;
 }
 
@@ -143,14 +144,7 @@ void EnergyPlot::drawBalancePanel(juce::Graphics& g, juce::Rectangle<float> area
     if (points.empty())
         lo = -1.0e-15, hi = 1.0e-15;
     else
-    {
-        const double extent = std::max({ std::abs(lo), std::abs(hi), 1.0e-17 });
-        if (lo >= -0.25 * extent && hi <= 0.25 * extent) // hardly any spread: centre it
-            lo = -extent, hi = extent;
-        const double pad = 0.08 * std::max(hi - lo, extent);
-        lo -= pad;
-        hi += pad;
-    }
+        std::tie(lo, hi) = balanceRange(lo, hi);
 
     plot::Axes axes { area, 0.0, durationMs, lo, hi };
     const auto xTicks = plot::niceTicks(0.0, durationMs, 8);
@@ -209,7 +203,7 @@ void EnergyPlot::drawComponentPanel(juce::Graphics& g, juce::Rectangle<float> ar
         for (int s = batter; s <= total; ++s)
             if (const auto& b = bucket[(std::size_t) s]; b.filled)
                 largest = std::max(largest, b.max);
-    const double hi = largest > 0.0 ? std::pow(10.0, std::ceil(std::log10(largest * 1.05))) : 1.0;
+    const double hi = componentTop(largest);
     const double lo = hi * std::pow(10.0, -kDecades);
 
     plot::Axes axes { area, 0.0, durationMs, lo, hi, false, true };

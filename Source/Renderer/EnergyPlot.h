@@ -12,10 +12,13 @@
 
 #include <juce_graphics/juce_graphics.h>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace snaresim::render
@@ -34,6 +37,30 @@ public:
     void add(std::int64_t firstSample, std::span<const EnergyLedger> rows);
 
     juce::Image draw() const;
+
+    // Layout, in pixels: the plot areas of the left (balance) and right (component) panels.
+    static juce::Rectangle<float> balanceArea() { return { 120.0f, 50.0f, 530.0f, 470.0f }; }
+    static juce::Rectangle<float> componentArea() { return { 790.0f, 50.0f, 440.0f, 470.0f }; }
+
+    // The balance panel's y range for a curve from lo to hi (its lowest and highest values):
+    // centred on 0 when the curve stays within round-off of it, then widened by 8 % of the span
+    // on each side, so the curve's extremes lie 8 / 116 of the height inside the frame.
+    static std::pair<double, double> balanceRange(double lo, double hi)
+    {
+        const double extent = std::max({ std::abs(lo), std::abs(hi), 1.0e-17 });
+        if (lo >= -0.25 * extent && hi <= 0.25 * extent) // hardly any spread: centre it
+            lo = -extent, hi = extent;
+        const double pad = 0.08 * std::max(hi - lo, extent);
+        return { lo - pad, hi + pad };
+    }
+
+    // The component panel's y range, logarithmic: from the decade above 1.05 times the largest
+    // energy plotted, componentDecades decades down.
+    static constexpr int componentDecades = 7;
+    static double componentTop(double largest)
+    {
+        return largest > 0.0 ? std::pow(10.0, std::ceil(std::log10(largest * 1.05))) : 1.0;
+    }
 
 private:
     enum Series

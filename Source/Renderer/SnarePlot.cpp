@@ -166,8 +166,8 @@ juce::Image SnarePlot::draw() const
     juce::Graphics g(image);
 
     const double durationMs = (double) (timeTo - timeFrom) / sampleRate * 1000.0;
-    drawWirePanel(g, { 100.0f, 50.0f, 810.0f, 340.0f }, durationMs);
-    drawContactPanel(g, { 100.0f, 478.0f, 810.0f, 150.0f }, durationMs);
+    drawWirePanel(g, wireArea(), durationMs);
+    drawContactPanel(g, contactArea(), durationMs);
     drawLegend(g, 935.0f, 50.0f);
     return image;
 }
@@ -261,7 +261,7 @@ void SnarePlot::drawContactPanel(juce::Graphics& g, juce::Rectangle<float> area,
 {
     const int points = (int) wireNodes.size();
     const double top = std::max(points, 1);
-    plot::Axes axes { area, 0.0, durationMs, 0.0, top * 1.08 };
+    plot::Axes axes { area, 0.0, durationMs, 0.0, contactAxisTop(points) };
     const auto yValues = plot::niceTicks(0.0, top, 4);
     const double yStep = plot::tickStep(yValues);
     plot::drawAxes(g, axes, timeTicks(durationMs, area.getWidth()),

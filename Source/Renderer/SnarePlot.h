@@ -17,6 +17,7 @@
 
 #include <juce_graphics/juce_graphics.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -45,6 +46,13 @@ public:
     void add(std::int64_t time, const Drum& drum);
 
     juce::Image draw() const;
+
+    // Layout, in pixels: the plot areas of the top (wires) and bottom (contact count) panels.
+    static juce::Rectangle<float> wireArea() { return { 100.0f, 50.0f, 810.0f, 340.0f }; }
+    static juce::Rectangle<float> contactArea() { return { 100.0f, 478.0f, 810.0f, 150.0f }; }
+    // The contact panel's y axis runs from 0 to 1.08 times the number of wire points; its x axis,
+    // like the top panel's, from 0 to the window's length in ms after the first strike.
+    static double contactAxisTop(int points) { return std::max(points, 1) * 1.08; }
 
 private:
     struct Row

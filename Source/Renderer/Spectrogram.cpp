@@ -15,7 +15,7 @@ namespace
 constexpr std::int64_t kMaxSlots = 4096;
 constexpr float kFloorPower = 1.0e-30f;
 
-const juce::Rectangle<int> kArea { 100, 50, 955, 580 };   // the spectrogram itself
+const juce::Rectangle<int> kArea = Spectrogram::plotArea(); // the spectrogram itself
 const juce::Rectangle<int> kColourBar { 1085, 50, 24, 580 };
 
 // An approximation of matplotlib's "inferno" colour map (dark: quiet, light: loud).
@@ -69,14 +69,13 @@ Spectrogram::Spectrogram(std::int64_t numSamples, double sampleRate_Hz, std::str
     }
 
     // Rows: equal steps of log frequency from 40 Hz to Nyquist (row 0 at the bottom).
-    const double nyquist = sampleRate / 2.0;
     const double binWidth = sampleRate / fftSize;
     const int lastBin = fftSize / 2;
     rowBins.resize((std::size_t) rows);
     for (int r = 0; r < rows; ++r)
     {
-        const double lo = lowestFrequency_Hz * std::pow(nyquist / lowestFrequency_Hz, (double) r / rows);
-        const double hi = lowestFrequency_Hz * std::pow(nyquist / lowestFrequency_Hz, (double) (r + 1) / rows);
+        const double lo = rowEdge_Hz(r, sampleRate);
+        const double hi = rowEdge_Hz(r + 1, sampleRate);
         auto& row = rowBins[(std::size_t) r];
         row.first = (int) std::ceil(lo / binWidth);
         row.last = std::min(lastBin, (int) std::ceil(hi / binWidth) - 1);

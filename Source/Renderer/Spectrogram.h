@@ -14,6 +14,7 @@
 #include <Eigen/Core>
 #include <unsupported/Eigen/FFT>
 
+#include <cmath>
 #include <complex>
 #include <cstdint>
 #include <span>
@@ -38,6 +39,19 @@ public:
 
     // Completes the last frames (zero padding) and draws.
     juce::Image draw();
+
+    // Layout: the spectrogram's pixels. Pixel column x of the area shows the frames centred in
+    // samples [x N / width, (x + 1) N / width) of an N-sample render (or the nearest frame);
+    // pixel row y shows frequency row getBottom() - 1 - y.
+    static juce::Rectangle<int> plotArea() { return { 100, 50, 955, 580 }; }
+
+    // The frequency axis: row r (0 at the bottom, plotArea().getHeight() rows) covers
+    // [rowEdge_Hz(r), rowEdge_Hz(r + 1)), equal steps of log frequency from 40 Hz to Nyquist.
+    static double rowEdge_Hz(int row, double sampleRate_Hz)
+    {
+        const double nyquist = sampleRate_Hz / 2.0;
+        return lowestFrequency_Hz * std::pow(nyquist / lowestFrequency_Hz, (double) row / plotArea().getHeight());
+    }
 
     int windowLength() const { return windowSize; }
     int hopSize() const { return hop; }

@@ -1,4 +1,4 @@
-// Energy checks of the scheme (paper section 3.5, 5.1): conservation to round-off when
+// Energy checks of the scheme (eq. 34-38): conservation to round-off when
 // lossless, monotone decay with losses.
 
 #include "TestDrums.h"
@@ -14,7 +14,7 @@ TEST_CASE("lossless head and mallet conserve the discrete energy to round-off", 
 {
     Drum drum(test::losslessHead());
     drum.setEnergyTracking(true);
-    drum.strike(5.0, 0.3, 0.1); // 5 m/s, as in the paper's section 5.1
+    drum.strike(5.0, 0.3, 0.1); // 5 m/s, as in the paper's energy test
 
     const double e0 = drum.energy().total();
     const double b0 = drum.energy().balance();

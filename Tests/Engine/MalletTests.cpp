@@ -1,4 +1,4 @@
-// The mallet strikes and rebounds (paper section 2.4, 4.1).
+// The mallet strikes and rebounds (eq. 9-11, 26-27, 44-45).
 
 #include "TestDrums.h"
 
@@ -50,7 +50,7 @@ TEST_CASE("the mallet rebounds after a physically sensible contact", "[mallet]")
     const double f01 = j01 * std::sqrt(cfg.batter.tension_N_per_m / rho) / (2.0 * std::numbers::pi * R);
     const double m01 = rho * std::numbers::pi * R * R * std::pow(std::cyl_bessel_j(1.0, j01), 2);
     const double K01 = std::pow(2.0 * std::numbers::pi * f01, 2) * m01;
-    CHECK(K01 == Approx(14.9e3).epsilon(0.02)); // physics-notes section 3
+    CHECK(K01 == Approx(14.9e3).epsilon(0.02));
     const double phi = std::cyl_bessel_j(0.0, j01 * strikeRadius);
     const double halfPeriod = std::numbers::pi * std::sqrt((M * phi * phi + m01) / K01);
 
@@ -68,13 +68,18 @@ TEST_CASE("the mallet rebounds after a physically sensible contact", "[mallet]")
 
 TEST_CASE("strikes with bad values are ignored and never produce non-finite output", "[mallet]")
 {
-    Drum drum(test::lossyHead());
+    const DrumConfig cfg = test::lossyHead();
+    Drum drum(cfg);
+    drum.setEnergyTracking(true);
     drum.strike(std::nan(""), 0.3, 0.0);
     drum.strike(-1.0, 0.3, 0.0);
     drum.strike(5.0, std::numeric_limits<double>::infinity(), 0.0);
+    CHECK(drum.energy().injected_J == 0.0); // no mallet was launched
     for (int n = 0; n < 100; ++n)
         REQUIRE(drum.step() == 0.0);
     drum.strike(1000.0, 3.0, 3.0); // absurd speed and a point off the head: clamped, still finite
+    // The speed is clamped to 50 m/s: the mallet brings (1/2) M (50 m/s)^2.
+    CHECK(drum.energy().injected_J == Approx(0.5 * cfg.mallet.mass_kg * 50.0 * 50.0).epsilon(1e-12));
     double peak = 0.0;
     for (int n = 0; n < 2000; ++n)
     {

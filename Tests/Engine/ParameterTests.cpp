@@ -40,7 +40,7 @@ TEST_CASE("out-of-range and non-finite values are refused or clamped", "[paramet
     CHECK(p.get(ParamId::batterTension) == spec(ParamId::batterTension).defaultValue);
 }
 
-TEST_CASE("the defaults give the physics-notes drum", "[parameters]")
+TEST_CASE("the defaults give the 14 x 5.5 inch drum of docs/MODEL.md", "[parameters]")
 {
     const DrumConfig c = makeDrumConfig(ParameterSet {}, 48000.0);
     CHECK(c.batter.tension_N_per_m == 3050.0);
@@ -64,12 +64,25 @@ TEST_CASE("the quality and solver settings reach the heads, the wires and the sn
     CHECK(c.snares.scheme == CollisionScheme::newton);
     CHECK(c.carry.gridCoarseness == 3.0);
     CHECK(c.snares.gridCoarseness == 3.0);
-    // The wire grid is the stability bound of eq. (40) times the coarseness.
+    // The wire grid is the stability bound of eq. (40) times the coarseness, fitted to the
+    // (fitted) wire length L with a whole number of intervals: M = floor(L / (coarseness h_min)),
+    // h_s = L / M (18 and 57 intervals here); every interior node of every wire is a contact point.
     const double k = 1.0 / 48000.0;
+    auto checkWireGrid = [k](const DrumConfig& cfg, const Drum& drum) {
+        const double L = cfg.fittedSnares().length_m;
+        const int M = (int) std::floor(L / (cfg.snares.gridCoarseness * SnareWires::minimumSpacing(cfg.snares, k)));
+        INFO("coarseness " << cfg.snares.gridCoarseness << ": " << M << " intervals of " << L / M << " m");
+        CHECK(drum.snareWires().intervals() == M);
+        CHECK(drum.snareWires().spacing() == Approx(L / M).epsilon(1e-12));
+        CHECK(drum.snareWires().spacing() >= cfg.snares.gridCoarseness * SnareWires::minimumSpacing(cfg.snares, k));
+        CHECK(drum.snareContact().numPoints() == cfg.snares.count * (M - 1));
+    };
     const Drum coarse(c);
-    CHECK(coarse.snareWires().spacing() >= 3.0 * SnareWires::minimumSpacing(c.snares, k));
+    checkWireGrid(c, coarse);
     p.set(ParamId::gridCoarseness, 1.0);
-    const Drum fine(makeDrumConfig(p, 48000.0));
+    const DrumConfig f = makeDrumConfig(p, 48000.0);
+    const Drum fine(f);
+    checkWireGrid(f, fine);
     CHECK(fine.snareWires().spacing() < 1.1 * SnareWires::minimumSpacing(c.snares, k));
     CHECK(fine.snareContact().numPoints() > 2 * coarse.snareContact().numPoints());
 }
@@ -77,13 +90,29 @@ TEST_CASE("the quality and solver settings reach the heads, the wires and the sn
 TEST_CASE("presets are found by name and apply their values", "[parameters]")
 {
     ParameterSet p;
-    REQUIRE(applyPreset("tight funk", p));
-    CHECK(p.get(ParamId::batterTension) > spec(ParamId::batterTension).defaultValue);
+    REQUIRE(applyPreset("tight funk", p)); // names are case-insensitive
+    CHECK(p.get(ParamId::batterTension) == 4800.0);
     CHECK_FALSE(applyPreset("no such preset", p));
+    CHECK(p.get(ParamId::batterTension) == 4800.0); // an unknown name leaves the values alone
     for (const auto& preset : factoryPresets())
     {
+        INFO("preset " << std::string(preset.name));
         ParameterSet q;
+        q.set(ParamId::outputGain, -12.0); // no preset sets it: applying one resets it
         REQUIRE(applyPreset(preset.name, q));
-        CHECK_NOTHROW(makeDrumConfig(q, 44100.0));
+        // The preset's values, and the defaults for the rest.
+        for (const auto& s : parameterSpecs())
+        {
+            double expected = s.defaultValue;
+            for (const auto& [id, value] : preset.values)
+                if (id == s.id)
+                    expected = value;
+            INFO("parameter " << std::string(s.key));
+            CHECK(q.get(s.id) == expected);
+        }
+        DrumConfig cfg;
+        CHECK_NOTHROW(cfg = makeDrumConfig(q, 44100.0));
+        CHECK(cfg.batter.tension_N_per_m == q.get(ParamId::batterTension));
+        CHECK(cfg.snares.engaged == (q.get(ParamId::snaresEngaged) >= 0.5));
     }
 }

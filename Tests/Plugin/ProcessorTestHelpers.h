@@ -4,6 +4,9 @@
 
 #include "PluginProcessor.h"
 
+#include "Drum.h"
+#include "DrumConfig.h"
+
 #include <juce_audio_processors/juce_audio_processors.h>
 
 #include <algorithm>
@@ -126,6 +129,37 @@ inline Rendered render (juce::AudioProcessor& proc, int blockSize, int numSample
 inline juce::MidiMessage note (int velocity, int key = 38)
 {
     return juce::MidiMessage::noteOn (10, key, (juce::uint8) velocity);
+}
+
+// What the processor must output for these parameters at this rate: the engine's drum built
+// from them (makeDrumConfig, as the model builder does), each note played before the step of
+// its sample (Drum::playNote), the mix as float with |x| < 1e-30 written as 0 (the output
+// guard), denormals flushed as in processBlock. Pass the processor's currentParameters(): the
+// parameters hold floats.
+struct EngineNote
+{
+    int sample, key, velocity;
+};
+
+inline std::vector<float> engineRender (const snaresim::ParameterSet& params, double sampleRate, int numSamples,
+                                        std::vector<EngineNote> notes)
+{
+    const juce::ScopedNoDenormals noDenormals;
+    snaresim::Drum drum (snaresim::makeDrumConfig (params, sampleRate));
+    std::stable_sort (notes.begin(), notes.end(), [] (const EngineNote& a, const EngineNote& b) { return a.sample < b.sample; });
+    std::vector<float> out;
+    size_t next = 0;
+    for (int n = 0; n < numSamples; ++n)
+    {
+        while (next < notes.size() && notes[next].sample <= n)
+        {
+            drum.playNote (notes[next].key, notes[next].velocity);
+            ++next;
+        }
+        const float x = (float) drum.step();
+        out.push_back (std::abs (x) >= 1.0e-30f ? x : 0.0f);
+    }
+    return out;
 }
 
 inline double rms (const std::vector<float>& x, size_t from = 0, size_t to = SIZE_MAX)

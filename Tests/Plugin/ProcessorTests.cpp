@@ -4,6 +4,7 @@
 
 #include "PluginProcessor.h"
 #include "PluginState.h"
+#include "ProcessorTestHelpers.h"
 #include "ToggleParameter.h"
 
 #include <juce_audio_processors/juce_audio_processors.h>
@@ -26,6 +27,7 @@ struct RenderStats
     float peak = 0.0f;
     float peakBeforeOnset = 0.0f;   // largest |sample| before the note-on
     bool channelsIdentical = true;
+    std::vector<float> samples;     // channel 0
 };
 
 // Renders `totalSamples` samples in blocks of `blockSize`, with a note-on (velocity) at
@@ -60,6 +62,7 @@ RenderStats render (juce::AudioProcessor& proc, int blockSize, int totalSamples,
             stats.peak = juce::jmax (stats.peak, std::abs (s));
             if (start + i < noteAt)
                 stats.peakBeforeOnset = juce::jmax (stats.peakBeforeOnset, std::abs (s));
+            stats.samples.push_back (s);
             for (int ch = 1; ch < numChannels; ++ch)
                 if (buffer.getSample (ch, i) != s)
                     stats.channelsIdentical = false;
@@ -130,6 +133,8 @@ TEST_CASE ("a note-on at 48 kHz gives finite, non-silent audio", "[processor]")
     CHECK (stats.peak > 1.0e-4f);
     CHECK (stats.peak < 100.0f);
     CHECK (stats.channelsIdentical);
+    // Sample for sample the engine's drum with the note at sample 100.
+    CHECK (stats.samples == snaresim::testing::engineRender (proc.currentParameters(), 48000.0, 48000 / 2, { { 100, 38, 100 } }));
 }
 
 TEST_CASE ("blocks larger than announced are rendered in chunks", "[processor]")
@@ -142,6 +147,7 @@ TEST_CASE ("blocks larger than announced are rendered in chunks", "[processor]")
     CHECK (stats.peakBeforeOnset == 0.0f);
     CHECK (stats.peak > 1.0e-4f);
     CHECK (stats.channelsIdentical);
+    CHECK (stats.samples == snaresim::testing::engineRender (proc.currentParameters(), 48000.0, 12000, { { 2500, 38, 100 } }));
 }
 
 TEST_CASE ("mono output and 44.1 kHz are supported", "[processor]")
@@ -161,6 +167,7 @@ TEST_CASE ("mono output and 44.1 kHz are supported", "[processor]")
     const auto stats = render (proc, 256, 22050, 0, 127);
     CHECK (stats.allFinite);
     CHECK (stats.peak > 1.0e-4f);
+    CHECK (stats.samples == snaresim::testing::engineRender (proc.currentParameters(), 44100.0, 22050, { { 0, 38, 127 } }));
 }
 
 TEST_CASE ("louder MIDI velocity strikes harder", "[processor]")
@@ -172,7 +179,15 @@ TEST_CASE ("louder MIDI velocity strikes harder", "[processor]")
         return render (proc, 480, 9600, 0, velocity).peak;
     };
 
-    CHECK (peakFor (127) > peakFor (20));
+    // The documented velocity curve, speed = v_max 10^(-1.6 (127 - v) / 126), makes velocity 127
+    // strike 22.8 times as fast as velocity 20. The heads respond linearly; the Hertz contact,
+    // stiffer the harder it is struck, only reshapes the pulse a little: the peak per m/s stays
+    // within 4 % from velocity 1 to 127, so the peaks keep the speeds' ratio within 5 %.
+    const double speedRatio = std::pow (10.0, 1.6 * (127 - 20) / 126.0);
+    const float loud = peakFor (127), soft = peakFor (20);
+    INFO ("peaks " << loud << " and " << soft << ", speed ratio " << speedRatio);
+    CHECK (loud > soft);
+    CHECK (loud / soft == Approx (speedRatio).epsilon (0.05));
 }
 
 TEST_CASE ("processing before prepareToPlay outputs silence", "[processor]")
@@ -248,11 +263,15 @@ TEST_CASE ("state save and restore round-trips every parameter exactly", "[proce
         CHECK ((float) engineParams.get (spec.id) == raw->load());
     }
 
-    // The restored parameters play (the grid ones from the next prepareToPlay or model build).
+    // The restored parameters play (the grid ones from the next prepareToPlay or model build):
+    // the processor sounds as the engine's drum built from them.
     prepare (fresh, 48000.0, 256);
     CHECK (fresh.getDrum() != nullptr);
+    REQUIRE_FALSE (fresh.usedFallbackParameters());
     const auto stats = render (fresh, 256, 4800, 0);
     CHECK (stats.allFinite);
+    CHECK (stats.peak > 0.0f);
+    CHECK (stats.samples == snaresim::testing::engineRender (fresh.currentParameters(), 48000.0, 4800, { { 0, 38, 100 } }));
 }
 
 TEST_CASE ("a state restores every parameter exactly, whatever values a host set before", "[processor][state]")
@@ -361,8 +380,13 @@ TEST_CASE ("a sample rate the model cannot take never crashes", "[processor]")
         INFO ("sample rate " << rate);
         SnareSimAudioProcessor proc;
         REQUIRE_NOTHROW (prepare (proc, rate, 256));
+        // No drum, not even the default one: at 8 kHz and below the default grid (Quality 2)
+        // would have fewer than 4 nodes per radius. So the note plays nothing.
+        CHECK (proc.getDrum() == nullptr);
+        CHECK_THROWS_AS (snaresim::makeDrumConfig (snaresim::ParameterSet {}, rate), std::invalid_argument);
         const auto stats = render (proc, 256, 2048, 10);
         CHECK (stats.allFinite);
         CHECK (stats.peakBeforeOnset == 0.0f);
+        CHECK (stats.peak == 0.0f);
     }
 }

@@ -4,7 +4,12 @@
 
 #include "RendererTestSupport.h"
 
+#include "Cavity.h"
+#include "Membrane.h"
+
 #include <catch2/catch.hpp>
+
+#include <juce_audio_basics/juce_audio_basics.h>
 
 #include <cmath>
 
@@ -82,16 +87,42 @@ TEST_CASE("bench: --json reports the block timings with sane values", "[renderer
     CHECK(number(json, "realtime_factor_slowest_run") > 0.0);
     CHECK(number(json, "realtime_factor_slowest_run") <= number(json, "realtime_factor"));
 
-    // The model's size: the coarse grid spacing and the wires' contact points.
-    CHECK(number(json, "batter_grid_spacing_m") > 0.0);
-    CHECK(number(json, "batter_grid_spacing_m") < 0.1778);
-    CHECK(number(json, "carry_grid_spacing_m") > 0.0);
-    CHECK(number(json, "batter_nodes") > 0);
-    CHECK(number(json, "carry_nodes") > 0);
-    CHECK(number(json, "snare_points") > 0);
+    // The model's size: the default drum's at grid_coarseness=2, 48 kHz. Each head's spacing is
+    // twice the bound of eq. (39) for the largest tension and sigma1 the controls allow, widened
+    // for the cavity's reserve (Membrane::gridSpacing); every interior wire node is a point.
+    snaresim::ParameterSet params;
+    params.set(snaresim::ParamId::gridCoarseness, 2.0);
+    const auto config = snaresim::makeDrumConfig(params, 48000.0);
+    const snaresim::Drum drum(config);
+    const double k = 1.0 / 48000.0;
+    for (const auto* head : { &config.batter, &config.carry })
+    {
+        const double reserve = snaresim::Cavity::kineticReserve(config.cavity, head->radius_m, head->density_kg_per_m2, k);
+        const double bound = std::sqrt((2.0 * k * k * head->gridTension_N_per_m / head->density_kg_per_m2
+                                        + 8.0 * head->gridSigma1_m2_per_s * k) / (1.0 - reserve));
+        CHECK(snaresim::Membrane::gridSpacing(*head, k, reserve) == Approx(2.0 * bound).epsilon(1e-12));
+    }
+    CHECK(number(json, "batter_grid_spacing_m") == Approx(drum.batter().grid().spacing()).epsilon(1e-12));
+    CHECK(number(json, "carry_grid_spacing_m") == Approx(drum.carry().grid().spacing()).epsilon(1e-12));
+    CHECK(drum.batter().grid().spacing() == Approx(snaresim::Membrane::gridSpacing(config.batter, k,
+              snaresim::Cavity::kineticReserve(config.cavity, config.batter.radius_m, config.batter.density_kg_per_m2, k))));
+    CHECK(number(json, "batter_nodes") == drum.batter().grid().numInterior());
+    CHECK(number(json, "carry_nodes") == drum.carry().grid().numInterior());
+    CHECK(number(json, "snare_points") == config.snares.count * (drum.snareWires().intervals() - 1));
 
     CHECK(number(json, "nonfinite_samples") == 0);
     CHECK(number(json, "peak") > 0.0);
+    // The peak is the engine's: the same drum, MIDI note 38 at velocity 127 at sample 0, the
+    // mix as float, denormals flushed as the benchmark does (Benchmark.h).
+    {
+        const juce::ScopedNoDenormals noDenormals;
+        snaresim::Drum played(config);
+        played.playNote(38, 127);
+        float peak = 0.0f;
+        for (int n = 0; n < 12000; ++n)
+            peak = std::max(peak, std::abs((float) played.step()));
+        CHECK(number(json, "peak") == Approx(peak).epsilon(1e-9));
+    }
 }
 
 TEST_CASE("bench: the block size defaults to 64 and does not change the audio", "[renderer][bench]")

@@ -159,26 +159,46 @@ TEST_CASE("json: --json prints one JSON object with the render statistics", "[re
         CHECK(json.hasProperty(key));
         CHECK(json[key].isVoid()); // null
     }
-    CHECK(number(json, "solver_max_iterations") >= 0.0);
-    CHECK(number(json, "snare_max_iterations") >= 0.0);
-    CHECK(number(json, "snare_max_iterations") <= number(json, "solver_max_iterations"));
-    CHECK(number(json, "snare_max_penetration_m") >= 0.0);
-    CHECK(number(json, "solver_fallbacks") >= 0.0);
+    // The statistics are the engine's for this render: the default drum at 44.1 kHz, played
+    // in-process with the same strikes (samples 0 and 4410).
+    const auto config = snaresim::makeDrumConfig(snaresim::ParameterSet {}, 44100.0);
+    const auto engine = playInProcess(config, { { 0, 100 }, { 4410, 80 } }, 17640);
+    INFO("engine: " << engine.stats.maxIterations << " Newton iterations at most, penetration "
+                    << engine.stats.maxSnarePenetration_m << " m, peak " << engine.peak << ", rms " << engine.rms);
+    CHECK(number(json, "solver_max_iterations") == engine.stats.maxIterations);
+    CHECK(number(json, "solver_max_iterations") >= 1.0); // the mallets' contact is solved by Newton
+    // The quadratised snare solve (the default) is one linear solve per step: no iteration.
+    CHECK(config.snares.scheme == snaresim::CollisionScheme::quadratised);
+    CHECK(number(json, "snare_max_iterations") == 0.0);
+    CHECK(number(json, "snare_max_penetration_m") == Approx(engine.stats.maxSnarePenetration_m).epsilon(1e-9));
+    // The wires press into the head, by far less than a carry-head grid cell.
+    const snaresim::Drum drum(config);
+    CHECK(number(json, "snare_max_penetration_m") > 0.0);
+    CHECK(number(json, "snare_max_penetration_m") < 0.01 * drum.carry().grid().spacing());
+    CHECK(number(json, "solver_fallbacks") == 0.0);
 
-    // The peak it reports is the file's.
+    // The peak and RMS it reports are the file's, and the engine's.
     const auto data = readWav(wav);
+    REQUIRE(data.samples.size() == 17640);
+    CHECK(data.samples == engine.mix);
     float peak = 0.0f;
+    double sumSquares = 0.0;
     for (const float x : data.samples)
+    {
         peak = std::max(peak, std::abs(x));
+        sumSquares += (double) x * (double) x;
+    }
     CHECK(number(json, "peak") == Approx(peak));
+    CHECK(number(json, "rms") == Approx(std::sqrt(sumSquares / 17640.0)).epsilon(1e-9));
 }
 
 TEST_CASE("lossless: --lossless --json reports an energy balance drift below 1e-10", "[renderer]")
 {
     TempDir dir;
     const auto wav = dir.out() / "lossless.wav";
+    const auto csv = dir.out() / "lossless.csv";
     const auto run = runRenderer({ "-o", wav.string(), "--hit", "0:127", "--hit", "0.05:100", "--seconds", "0.3",
-                                   "--sample-rate", "44100", "--lossless", "--json" },
+                                   "--sample-rate", "44100", "--lossless", "--json", "--energy-csv", csv.string() },
                                  dir.root() / "capture");
     INFO("stdout: " << run.out << "\nstderr: " << run.err);
     REQUIRE(run.exitCode == 0);
@@ -187,8 +207,35 @@ TEST_CASE("lossless: --lossless --json reports an energy balance drift below 1e-
     REQUIRE(json.isObject());
     REQUIRE(json.hasProperty("energy_relative_drift_max"));
     const double drift = number(json, "energy_relative_drift_max");
-    CHECK(drift >= 0.0);
     CHECK(drift < 1.0e-10);
+
+    // It is max_n |balance_n - balance_0| / max_n total_n of the ledger, which the CSV holds
+    // (total in column 6, balance in column 9, numbers written to round-trip exactly).
+    const auto rows = lines(readText(csv));
+    REQUIRE(rows.size() == 13231); // the header and 0.3 s at 44.1 kHz
+    double balance0 = 0.0, deviation = 0.0, largest = 0.0;
+    for (std::size_t i = 1; i < rows.size(); ++i)
+    {
+        std::vector<double> fields;
+        for (const char *p = rows[i].data(), *end = p + rows[i].size(); p < end;)
+        {
+            double v = 0.0;
+            const auto [next, ec] = std::from_chars(p, end, v);
+            if (ec != std::errc {})
+                break;
+            fields.push_back(v);
+            p = next + 1;
+        }
+        INFO("row " << i << ": " << rows[i]);
+        REQUIRE(fields.size() == 10);
+        if (i == 1)
+            balance0 = fields[9];
+        deviation = std::max(deviation, std::abs(fields[9] - balance0));
+        largest = std::max(largest, std::abs(fields[6]));
+    }
+    REQUIRE(largest > 0.0);
+    INFO("from the CSV: " << deviation / largest);
+    CHECK(drift == Approx(deviation / largest).epsilon(1e-9));
     CHECK(number(json, "nonfinite_samples") == 0.0);
     CHECK(number(json, "peak") > 0.0);
 }
@@ -301,7 +348,11 @@ TEST_CASE("energy csv: --energy-csv writes the header and one row per sample", "
             firstBalance = fields[9];
         maxDeviation = std::max(maxDeviation, std::abs(fields[9] - firstBalance));
     }
-    CHECK(maxTotal > 0.0);                       // the strike put energy in
+    CHECK(maxTotal > 0.0);                       // the strike put energy in:
+    // the mallet's (1/2) M v^2 at velocity 100, less what the first step's losses took (1e-6 of it)
+    const snaresim::ParameterSet defaults;
+    const double v = snaresim::strikeSpeedFromVelocity(100, defaults.get(snaresim::ParamId::strikeSpeedMax));
+    CHECK(maxTotal == Approx(0.5 * defaults.get(snaresim::ParamId::malletMass) * v * v).epsilon(1e-5));
     CHECK(maxDeviation <= 1.0e-9 * maxTotal);    // balance constant (lossy run)
 
     CHECK(entries(dir.out()) == std::vector<std::string> { "e.csv", "e.wav" });

@@ -135,9 +135,14 @@ PngData readPng(const fs::path& file)
     return data;
 }
 
+juce::Image loadImage(const fs::path& file)
+{
+    return juce::ImageFileFormat::loadFrom(juce::File(fs::absolute(file).string()));
+}
+
 int distinctColours(const fs::path& file, int x, int y, int width, int height, int limit)
 {
-    const auto image = juce::ImageFileFormat::loadFrom(juce::File(fs::absolute(file).string()));
+    const auto image = loadImage(file);
     if (! image.isValid())
         return 0;
     std::set<juce::uint32> colours;
@@ -206,6 +211,27 @@ void requirePicture(const fs::path& file, int width, int height)
     CHECK(png.width == width);
     CHECK(png.height == height);
     CHECK(distinctColours(file, 0, 0, png.width, png.height) > 1);
+}
+
+EngineRun playInProcess(const snaresim::DrumConfig& config, const std::vector<std::pair<long long, int>>& strikes,
+                        long long numSamples)
+{
+    EngineRun run;
+    snaresim::Drum drum(config);
+    std::size_t next = 0;
+    double sumSquares = 0.0;
+    for (long long n = 0; n < numSamples; ++n)
+    {
+        while (next < strikes.size() && strikes[next].first <= n)
+            drum.strikeAtDefaultPoint(snaresim::strikeSpeedFromVelocity(strikes[next++].second, config.strikeSpeedMax_m_per_s));
+        const float x = (float) drum.step();
+        run.mix.push_back(x);
+        run.peak = std::max(run.peak, (double) std::abs(x));
+        sumSquares += (double) x * (double) x;
+    }
+    run.rms = numSamples > 0 ? std::sqrt(sumSquares / (double) numSamples) : 0.0;
+    run.stats = drum.solverStats();
+    return run;
 }
 
 void requireRejected(const TempDir& dir, const std::vector<std::string>& args, const std::string& mentions)

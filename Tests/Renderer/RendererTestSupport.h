@@ -3,9 +3,14 @@
 // temporary directory per test, reading the WAV / CSV / JSON / PNG it writes.
 
 #include <juce_core/juce_core.h>
+#include <juce_graphics/juce_graphics.h>
+
+#include "Drum.h"
+#include "DrumConfig.h"
 
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace rendertest
@@ -72,6 +77,9 @@ struct PngData
 
 PngData readPng(const fs::path& file);
 
+// The image of a picture file (invalid when it cannot be loaded).
+juce::Image loadImage(const fs::path& file);
+
 // Checks that `file` is a PNG of this size with more than one colour (REQUIRE: it loads).
 void requirePicture(const fs::path& file, int width, int height);
 
@@ -89,6 +97,18 @@ juce::var parseJson(const std::string& text);
 
 // Every line of a text, without the line ends.
 std::vector<std::string> lines(const std::string& text);
+
+// The renderer's drum played in-process, as Renderer.cpp plays it: each strike (sample, MIDI
+// velocity) at the default strike point before the step of its sample, the mix as float.
+struct EngineRun
+{
+    std::vector<float> mix;
+    snaresim::SolverStats stats;
+    double peak = 0.0;
+    double rms = 0.0;
+};
+EngineRun playInProcess(const snaresim::DrumConfig& config, const std::vector<std::pair<long long, int>>& strikes,
+                        long long numSamples);
 
 // Runs the renderer with exactly these arguments and checks the bad-input contract: exit 2,
 // one line on stderr starting with "snaresim-render: error: " and naming `mentions`, nothing
