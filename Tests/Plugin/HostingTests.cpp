@@ -11,6 +11,8 @@
 #include <catch2/catch.hpp>
 
 #include "PluginHostHarness.h"
+#include "Drum.h"
+#include "DrumConfig.h"
 #include "Parameters.h"
 #include "Presets.h"
 
@@ -153,6 +155,33 @@ double rms (const std::vector<float>& x)
     return x.empty() ? 0.0 : std::sqrt (sum / (double) x.size());
 }
 
+// The parameter values as the plug-in holds them: floats.
+snaresim::ParameterSet asFloats (const snaresim::ParameterSet& values)
+{
+    snaresim::ParameterSet held;
+    for (const auto& spec : snaresim::parameterSpecs())
+        held.setClamped (spec.id, (double) (float) values.get (spec.id));
+    return held;
+}
+
+// What the plug-in must play: the engine's drum built from these values (makeDrumConfig),
+// note 38 at `velocity` before the step of sample `noteAt`, the mix as float with |x| < 1e-30
+// written as 0 (the processor's output guard), denormals flushed as in processBlock.
+std::vector<float> engineRender (const snaresim::ParameterSet& values, double rate, int numSamples, int noteAt, int velocity)
+{
+    const juce::ScopedNoDenormals noDenormals;
+    snaresim::Drum drum (snaresim::makeDrumConfig (values, rate));
+    std::vector<float> out;
+    for (int n = 0; n < numSamples; ++n)
+    {
+        if (n == noteAt)
+            drum.playNote (38, velocity);
+        const float x = (float) drum.step();
+        out.push_back (std::abs (x) >= 1.0e-30f ? x : 0.0f);
+    }
+    return out;
+}
+
 // RMS of a - b relative to the larger RMS of the two.
 double relativeDifference (const std::vector<float>& a, const std::vector<float>& b)
 {
@@ -243,6 +272,24 @@ std::optional<double> stateValue (const juce::XmlElement& xml, const char* key)
     return std::nullopt;
 }
 
+// The values the plug-in holds now, read from its state (a host passes normalised floats, so
+// they can sit a float's rounding away from the values set): first lets it take pending ones.
+snaresim::ParameterSet heldValues (juce::AudioPluginInstance& plugin, Format format)
+{
+    settle (plugin);
+    const auto xml = pluginStateXml (plugin, format);
+    REQUIRE (xml != nullptr);
+    snaresim::ParameterSet held;
+    for (const auto& spec : snaresim::parameterSpecs())
+    {
+        const auto v = stateValue (*xml, std::string (spec.key).c_str());
+        INFO ("parameter " << spec.key);
+        REQUIRE (v.has_value());
+        held.setClamped (spec.id, *v);
+    }
+    return asFloats (held);
+}
+
 //==============================================================================
 // The tests, once per format
 
@@ -263,12 +310,27 @@ void checkLoadsAndPlays (Format format)
         CHECK (names.contains (name));
     }
 
+    const auto held = heldValues (*plugin, plugin.format);
     const auto rendered = snaresim::testhost::renderNote (*plugin, sampleRate, blockSize, 24 * blockSize);
-    CHECK (rendered.numOutputChannels >= 1);
+    CHECK (rendered.numOutputChannels == 2); // the default layout: stereo, the same signal in both
+    CHECK (rendered.channelsIdentical);
     CHECK (rendered.allFinite);
     CHECK_FALSE (rendered.anySubnormal);
     CHECK (rendered.peak > 1.0e-4f);
     CHECK (rendered.peak < 100.0f);
+    // The built binary plays the engine's drum with the values it holds (the defaults, within a
+    // float's rounding), sample for sample.
+    for (const auto& spec : snaresim::parameterSpecs())
+    {
+        INFO ("parameter " << spec.key);
+        CHECK (held.get (spec.id) == Approx (spec.defaultValue).epsilon (1.0e-6));
+    }
+    const auto expected = engineRender (held, sampleRate, 24 * blockSize, 0, 100);
+    size_t same = 0;
+    while (same < expected.size() && rendered.samples[same] == expected[same])
+        ++same;
+    INFO ("the same until sample " << same << " of " << expected.size());
+    CHECK (rendered.samples == expected);
 }
 
 void checkVelocities (Format format)
@@ -276,15 +338,24 @@ void checkVelocities (Format format)
     auto plugin = load (format);
     fastSettings (*plugin);
 
+    // The heads respond linearly to the strike speed (the documented velocity curve,
+    // v_max 10^(-1.6 (127 - v) / 126)); the Hertz contact only reshapes the pulse a little, so
+    // the peak per m/s stays within 5 % of velocity 20's.
     float previousPeak = 0.0f;
+    double peakPerSpeed20 = 0.0;
     for (const int velocity : { 20, 50, 80, 110, 127 })
     {
         const auto r = renderNotes (*plugin, { { 0, velocity } }, 4800);
-        INFO ("velocity " << velocity << ": peak " << r.peak << " (previous " << previousPeak << ")");
+        const double speed = 6.0 * std::pow (10.0, -1.6 * (127 - velocity) / 126.0);
+        if (velocity == 20)
+            peakPerSpeed20 = r.peak / speed;
+        INFO ("velocity " << velocity << ": peak " << r.peak << " (previous " << previousPeak << "), per m/s "
+                          << r.peak / speed << " (velocity 20: " << peakPerSpeed20 << ")");
         CHECK (r.allFinite);
         CHECK_FALSE (r.anySubnormal);
         CHECK (r.peak > 1.0e-5f);
         CHECK (r.peak > previousPeak * 1.05f);
+        CHECK (r.peak / speed == Approx (peakPerSpeed20).epsilon (0.05));
         previousPeak = r.peak;
     }
 }
@@ -411,8 +482,15 @@ void checkStateRoundTrip (Format format)
     REQUIRE (again != nullptr);
     CHECK (again->isEquivalentTo (before.get(), false));
 
+    // The restored instance plays those values (as floats): the engine's drum built from them.
+    // The restored instance plays the engine's drum with the values it holds. (Through JUCE's
+    // LV2 host it does not yet, as after a program change: VST3 only for now.)
+    const auto held = heldValues (*fresh, format);
     const auto r = snaresim::testhost::renderNote (*fresh, sampleRate, blockSize, 2048);
     CHECK (r.allFinite);
+    CHECK (r.peak > 1.0e-5f);
+    if (format == Format::vst3)
+        CHECK (r.samples == engineRender (held, sampleRate, 2048, 0, 100));
 }
 
 void checkVersion1State (Format format)
@@ -465,6 +543,7 @@ void checkRatesAndBlockSizes (Format format)
     {
         INFO ("sample rate " << rate);
         fastSettings (*plugin, rate, 8192);
+        const auto held = heldValues (*plugin, format);
 
         RenderRequest request;
         request.sampleRate = rate;
@@ -487,7 +566,18 @@ void checkRatesAndBlockSizes (Format format)
         CHECK (r.peak > 1.0e-5f);
         CHECK (r.peak < 100.0f);
         CHECK (r.numSamples == request.numSamples);
-        CHECK (sizes.size() > 3);
+        // The blocks asked for cover the render, the last one cut to what was left.
+        REQUIRE (sizes.size() > 3);
+        long covered = 0;
+        for (size_t b = 0; b + 1 < sizes.size(); ++b)
+            covered += sizes[b];
+        CHECK (covered < request.numSamples);
+        CHECK (covered + sizes.back() >= request.numSamples);
+        // Whatever the blocks, the engine's drum at this rate with the values the plug-in holds
+        // (fastSettings: grid coarseness 3 and 5 wires), sample for sample.
+        CHECK (held.get (ParamId::gridCoarseness) == Approx (3.0).epsilon (1.0e-6));
+        CHECK (held.get (ParamId::snareCount) == 5.0);
+        CHECK (r.samples == engineRender (held, rate, request.numSamples, 3, 100));
     }
 }
 
@@ -549,9 +639,15 @@ void checkPrograms (Format format)
         REQUIRE (applied);
         CHECK (plugin->getCurrentProgram() == index);
 
+        const auto held = heldValues (*plugin, format);
         const auto r = renderNotes (*plugin, { { 0, 100 } }, 3600);
         CHECK (r.allFinite);
         CHECK (r.peak > 1.0e-5f);
+        // The program sounds as the engine's drum with the values the plug-in holds (the
+        // preset's, as waited for above), sample for sample. Through JUCE's LV2 host it does
+        // not yet (it plays deterministically, but not that drum): VST3 only for now.
+        if (format == Format::vst3)
+            CHECK (r.samples == engineRender (held, sampleRate, 3600, 0, 100));
         renders.push_back (r.samples);
     }
 

@@ -124,10 +124,15 @@ TEST_CASE ("continuous parameters apply live and smoothly while the drum rings",
     set (proc, ParamId::damping, 80.0);
     set (proc, ParamId::batterTension, 5000.0);
 
-    // Half way through the 30 ms ramp the values are between; after it, at the targets.
+    // A third of the way through the 30 ms linear ramp (480 of 1440 samples) the damping is a
+    // third of the way to its target, and sigma0 follows from it; after the ramp, at the targets.
     render (proc, 32, 480);
     const double sigma0Mid = proc.getDrum()->config().batter.sigma0_per_s;
     CHECK (sigma0Mid > sigma0Before);
+    snaresim::ParameterSet third = proc.currentParameters();
+    const double dampingBefore = spec (ParamId::damping).defaultValue;
+    third.set (ParamId::damping, dampingBefore + (third.get (ParamId::damping) - dampingBefore) * 480.0 / 1440.0);
+    CHECK (sigma0Mid == Approx (snaresim::mapParameters (third, 48000.0).batter.sigma0_per_s).epsilon (1.0e-9));
 
     render (proc, 256, 2048);
     const auto target = snaresim::mapParameters (proc.currentParameters(), 48000.0);
