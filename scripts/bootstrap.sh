@@ -1,23 +1,26 @@
 #!/usr/bin/env bash
 # Sets up a Debian 12 machine, builds SnareSim and either renders a demo strike or runs the tests.
 #
-#   bash scripts/bootstrap.sh demo   # build, then render out/demo.wav (prints its absolute path)
-#   bash scripts/bootstrap.sh test   # build everything, run the short benchmark (prints its JSON
-#                                    # line; never fails on time), then the whole test suite (ctest)
+#   bash scripts/bootstrap.sh demo      # build, then render out/demo.wav (prints its absolute path)
+#   bash scripts/bootstrap.sh test      # build everything, run the short benchmark (prints its JSON
+#                                       # line; never fails on time), then the whole test suite (ctest)
+#   bash scripts/bootstrap.sh sanitize  # a second build with clang, AddressSanitizer and UBSan in
+#                                       # build-asan/, then the whole test suite there
+#   bash scripts/bootstrap.sh fuzz      # the libFuzzer targets of that build, FUZZ_SECONDS (60) each
 #
 # Safe to rerun: packages are installed only when missing, and the build in build/ only redoes
 # what changed.
 set -euo pipefail
 
 usage() {
-    echo "usage: bash scripts/bootstrap.sh demo|test" >&2
+    echo "usage: bash scripts/bootstrap.sh demo|test|sanitize|fuzz" >&2
     exit 2
 }
 
 [ $# -eq 1 ] || usage
 mode=$1
 case "$mode" in
-    demo|test) ;;
+    demo|test|sanitize|fuzz) ;;
     *) usage ;;
 esac
 
@@ -42,6 +45,9 @@ packages=(
     jalv jackd2             # a real LV2 host on a dummy JACK server, for the LV2 test
     python3                 # the LV2 test's recording check, scripts/band_share.py
 )
+case "$mode" in
+    sanitize|fuzz) packages+=(clang libclang-rt-14-dev) ;;  # the sanitizers' and libFuzzer's runtimes
+esac
 
 missing=()
 for pkg in "${packages[@]}"; do
@@ -66,9 +72,26 @@ if [ ${#missing[@]} -gt 0 ]; then
         apt-get install -y --no-install-recommends "${missing[@]}"
 fi
 
-# --- 2. Configure (Release) -----------------------------------------------------------------------
-log "configuring $build_dir"
-cmake -S "$repo" -B "$build_dir" -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=ON >/dev/null
+# --- 2. Configure ---------------------------------------------------------------------------------
+if [ "$mode" = sanitize ] || [ "$mode" = fuzz ]; then
+    # Everything again with clang, the sanitizers and libFuzzer's coverage (JUCE compiled once
+    # more, for this build).
+    build_dir="$repo/build-asan"
+    log "configuring $build_dir (clang, AddressSanitizer, UndefinedBehaviorSanitizer, libFuzzer)"
+    # Line tables only: readable sanitizer reports at half the compile time of -g.
+    CC=clang CXX=clang++ cmake -S "$repo" -B "$build_dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBUILD_TESTING=ON \
+        -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -gline-tables-only -DNDEBUG" \
+        -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O2 -gline-tables-only -DNDEBUG" \
+        -DSNARESIM_FUZZ=ON >/dev/null
+else
+    log "configuring $build_dir"
+    cmake -S "$repo" -B "$build_dir" -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=ON >/dev/null
+fi
+
+# A sanitizer error fails the test that hit it. Leaks are reported at exit.
+export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1:strict_string_checks=1}"
+export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
+export LSAN_OPTIONS="${LSAN_OPTIONS:-suppressions=$repo/Tests/Fuzz/lsan.supp}"
 
 # --- 3. Build and run -----------------------------------------------------------------------------
 case "$mode" in
@@ -101,5 +124,37 @@ case "$mode" in
 
         log "running the tests"
         ctest --test-dir "$build_dir" --output-on-failure
+        ;;
+    sanitize)
+        log "building everything with the sanitizers"
+        cmake --build "$build_dir" -j "$jobs"
+        # The corner test's rolls are 0.5 s here (10 s in the release suite); it prints the length.
+        log "running the tests under AddressSanitizer and UndefinedBehaviorSanitizer"
+        # Two at a time: the instrumented physics is slow, and every test works in its own folder.
+        SNARESIM_CORNER_SECONDS="${SNARESIM_CORNER_SECONDS:-0.5}" ctest --test-dir "$build_dir" --output-on-failure -j "$jobs"
+        ;;
+    fuzz)
+        log "building the fuzzers"
+        targets=(fuzz_state fuzz_midi_input fuzz_command_line fuzz_midi_file)
+        cmake --build "$build_dir" --target "${targets[@]}" -j "$jobs"
+        seconds=${FUZZ_SECONDS:-60}
+        status=0
+        for target in "${targets[@]}"; do
+            name=${target#fuzz_}
+            work="$build_dir/fuzz-runs/$name"
+            rm -rf "$work"
+            mkdir -p "$work/corpus"
+            cp "$repo/Tests/Fuzz/corpus/$name/." "$work/corpus/" -r
+            log "fuzzing $name for $seconds s (corpus copy and findings in $work)"
+            if ! (cd "$work" && "$build_dir/Tests/Fuzz/$target" -max_total_time="$seconds" -timeout=20 \
+                    -rss_limit_mb=4096 -print_final_stats=1 corpus >"$work/log.txt" 2>&1); then
+                echo "FUZZER FOUND A CRASH in $name: reproducer(s) in $work (crash-*, timeout-*, oom-*)" >&2
+                tail -n 60 "$work/log.txt" >&2
+                status=1
+            fi
+            grep -E "^(stat::number_of_executed_units|stat::average_exec_per_sec|stat::peak_rss_mb)|cov: " "$work/log.txt" \
+                | tail -n 4
+        done
+        exit "$status"
         ;;
 esac

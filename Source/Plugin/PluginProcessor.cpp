@@ -86,6 +86,11 @@ void SnareSimAudioProcessor::processBlock (juce::AudioBuffer<float>& buffer, juc
         player.setTarget (spec.id, (double) rawParameters[static_cast<std::size_t> (spec.id)]->load (std::memory_order_relaxed));
 
     const int numSamples = buffer.getNumSamples();
+    if (buffer.getNumChannels() == 0)
+    {
+        processingThread.store (nullptr, std::memory_order_relaxed);
+        return;     // nowhere to play to
+    }
     float* out = buffer.getWritePointer (0);
     int done = 0;           // samples rendered
     std::size_t count = 0;  // events gathered since

@@ -303,3 +303,21 @@ TEST_CASE ("MIDI floods: 1000 notes in a block, every note and velocity, running
               << worstBlock_ms << " ms (budget 1.333 ms), peak " << peak << ", non-finite resets "
               << proc.getNonFiniteResets() << "\n";
 }
+
+TEST_CASE ("a block with no channels or no samples is taken in stride", "[processor][hostile]")
+{
+    SnareSimAudioProcessor proc;
+    fastSettings (proc);
+    prepare (proc, 48000.0, 64);
+
+    juce::MidiBuffer midi;
+    midi.addEvent (juce::MidiMessage::noteOn (10, 38, (juce::uint8) 127), 0);
+    juce::AudioBuffer<float> none (0, 64), empty (2, 0);
+    proc.processBlock (none, midi);
+    proc.processBlock (empty, midi);
+
+    // And it plays on.
+    const auto r = render (proc, 64, 4800, { { 0, note (127) } });
+    CHECK (r.allFinite);
+    CHECK (r.peak > 0.0f);
+}
