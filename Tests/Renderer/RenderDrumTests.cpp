@@ -294,7 +294,8 @@ TEST_CASE("plots: --energy-plot and --spectrogram write PNG images", "[renderer]
             if (v > hi)
                 hi = v, hiAt = n;
         }
-        const auto [axisLo, axisHi] = snaresim::render::EnergyPlot::balanceRange(lo, hi);
+        const auto axisRange = snaresim::render::EnergyPlot::balanceRange(lo, hi);
+        const double axisLo = axisRange.first, axisHi = axisRange.second;   // (no structured binding: a lambda captures them)
         CHECK(axisLo == Approx(lo - 0.08 * (hi - lo)).epsilon(1e-12));
         CHECK(axisHi == Approx(hi + 0.08 * (hi - lo)).epsilon(1e-12));
         const auto balanceArea = snaresim::render::EnergyPlot::balanceArea();
