@@ -91,28 +91,8 @@ void Drum::playNote(int note, int velocity)
            r * std::sin(a.angle_rad));
 }
 
-bool Drum::canApplyLive(const DrumConfig& n) const noexcept
-{
-    auto sameGrid = [](const MembraneSpec& a, const MembraneSpec& b) {
-        return a.radius_m == b.radius_m && a.density_kg_per_m2 == b.density_kg_per_m2
-            && a.gridTension_N_per_m == b.gridTension_N_per_m && a.gridSigma1_m2_per_s == b.gridSigma1_m2_per_s
-            && a.gridCoarseness == b.gridCoarseness && b.tension_N_per_m <= (b.gridTension_N_per_m > 0.0 ? b.gridTension_N_per_m : a.tension_N_per_m)
-            && b.sigma1_m2_per_s <= (b.gridSigma1_m2_per_s >= 0.0 ? b.gridSigma1_m2_per_s : a.sigma1_m2_per_s);
-    };
-    const SnareSpec& a = cfg.snares;
-    const SnareSpec& b = n.snares;
-    return n.sampleRate_Hz == cfg.sampleRate_Hz && sameGrid(cfg.batter, n.batter) && sameGrid(cfg.carry, n.carry)
-        && a.count == b.count && a.scheme == b.scheme && a.length_m == b.length_m && a.spacing_m == b.spacing_m
-        && a.linearDensity_kg_per_m == b.linearDensity_kg_per_m && a.gridTension_N == b.gridTension_N
-        && a.gridSigma1_m2_per_s == b.gridSigma1_m2_per_s && a.gridCoarseness == b.gridCoarseness && b.tension_N <= (a.gridTension_N > 0.0 ? a.gridTension_N : a.tension_N)
-        && n.cavity.gridShellDepth_m == cfg.cavity.gridShellDepth_m && n.numMallets == cfg.numMallets
-        && n.mallet.contactRadius_m <= 0.02;
-}
-
 void Drum::applyLive(const DrumConfig& n) noexcept
 {
-    if (! canApplyLive(n))
-        return;
     batterHead.setCoefficients(n.batter.tension_N_per_m, n.batter.sigma0_per_s, n.batter.sigma1_m2_per_s);
     carryHead.setCoefficients(n.carry.tension_N_per_m, n.carry.sigma0_per_s, n.carry.sigma1_m2_per_s);
     wires.setCoefficients(n.snares.tension_N, n.snares.sigma0_per_s, n.snares.sigma1_m2_per_s);

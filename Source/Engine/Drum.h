@@ -64,10 +64,11 @@ public:
     // velocity curve, or snares off / on. Real-time safe.
     void playNote(int midiNote, int velocity);
 
-    // Live changes: true when `next` differs from the running config only in what can change
-    // without a new grid (tensions, losses, mallet, positions, microphones, gains, air,
-    // snares on/off). applyLive then takes those values; real-time safe.
-    bool canApplyLive(const DrumConfig& next) const noexcept;
+    // Takes a config's coefficients (tensions, losses, contact laws, mallet, microphones, gains,
+    // air, snares on/off) without touching the grids; real-time safe. `next` comes from the
+    // parameters whose change needs only coefficients (ChangeNeeds, Parameters.h); what else
+    // differs is ignored, and each component keeps its coefficients within what its grid was
+    // built for (eq. 39, 40), so the scheme stays stable whatever it is given.
     void applyLive(const DrumConfig& next) noexcept;
 
     // Snares on the carry head or thrown off. Real-time safe.

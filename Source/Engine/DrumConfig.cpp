@@ -131,14 +131,15 @@ DrumConfig DrumConfig::lossless() const
     return c;
 }
 
+DrumConfig::DrumConfig() : DrumConfig(mapParameters(ParameterSet {}, 48000.0)) {}
+
 DrumConfig mapParameters(const ParameterSet& p, double sampleRate_Hz) noexcept
 {
-    DrumConfig c;
+    DrumConfig c { DrumConfig::Unmapped {} };
     c.sampleRate_Hz = sampleRate_Hz;
-    // Damping d (0..100 %) sets the T60 of the heads' lowest modes: 4 s * (0.15 / 4)^(d / 100);
-    // sigma0 = 3 ln(10) / T60 (the amplitude falls by 60 dB in T60).
-    const double t60 = 4.0 * std::pow(0.15 / 4.0, p.get(ParamId::damping) / 100.0);
-    const double sigma0 = 3.0 * std::log(10.0) / t60;
+    // Damping sets the T60 of the heads' lowest modes (dampingT60); sigma0 = 3 ln(10) / T60
+    // (the amplitude falls by 60 dB in T60).
+    const double sigma0 = 3.0 * std::log(10.0) / dampingT60(p.get(ParamId::damping));
     const double sigma1 = p.get(ParamId::highDamping);
     const double coarseness = p.get(ParamId::gridCoarseness);
 
@@ -146,7 +147,9 @@ DrumConfig mapParameters(const ParameterSet& p, double sampleRate_Hz) noexcept
     c.batter.sigma0_per_s = sigma0;
     c.batter.sigma1_m2_per_s = sigma1;
     c.carry.tension_N_per_m = p.get(ParamId::carryFollows) >= 0.5
-                                ? std::clamp(p.get(ParamId::batterTension) * (2060.0 / 3050.0), spec(ParamId::carryTension).minValue,
+                                ? std::clamp(p.get(ParamId::batterTension) * (spec(ParamId::carryTension).defaultValue
+                                                                              / spec(ParamId::batterTension).defaultValue),
+                                             spec(ParamId::carryTension).minValue,
                                              spec(ParamId::carryTension).maxValue)
                                 : p.get(ParamId::carryTension);
     c.carry.sigma0_per_s = sigma0;

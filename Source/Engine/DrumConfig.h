@@ -1,7 +1,9 @@
 #pragma once
 // Physical description of the drum model, in SI units. Built from a ParameterSet by
 // makeDrumConfig() or filled in directly (tests). Validated by validate(), which throws
-// std::invalid_argument with a readable message.
+// std::invalid_argument with a readable message. The fields a parameter sets start at 0 here
+// ("from the schema"): DrumConfig{} is the schema's default drum (Parameters.h) at 48 kHz,
+// so there is one default drum.
 
 #include "Parameters.h"
 
@@ -13,24 +15,25 @@ struct MembraneSpec
 {
     double radius_m = 0.1778;
     double density_kg_per_m2 = 0.353;   // rho_i: 10 mil PET batter
-    double tension_N_per_m = 3050.0;    // T_i: (0,1) mode near 200 Hz
-    double sigma0_per_s = 4.6;          // frequency-independent loss, 3 ln(10) / T60
-    double sigma1_m2_per_s = 1.0e-3;    // frequency-dependent loss
+    double tension_N_per_m = 0.0;       // T_i (from the schema)
+    double sigma0_per_s = 0.0;          // frequency-independent loss, 3 ln(10) / T60 (from the schema)
+    double sigma1_m2_per_s = 0.0;       // frequency-dependent loss (from the schema)
     // The grid is chosen from eq. (39) for these (largest) values, so that moving the
     // tension or sigma1 below them changes coefficients only. Zero / negative: use the
     // actual tension / sigma1.
     double gridTension_N_per_m = 0.0;
     double gridSigma1_m2_per_s = -1.0;
-    double gridCoarseness = 1.0;        // h = coarseness * h_min(eq. 39); >= 1
+    double gridCoarseness = 1.0;        // h = coarseness * h_min(eq. 39); >= 1 (from the schema)
 };
 
 // A mallet: lumped mass with power-law contact, eq. (9)-(11).
+// Every field from the schema.
 struct MalletSpec
 {
-    double mass_kg = 0.028;
-    double stiffness = 1.0e8;           // kappa_M, N / m^alpha
-    double exponent = 1.5;              // alpha (1.5 Hertz ... 3 felt)
-    double contactRadius_m = 0.005;     // support of g_b (raised cosine); below h: bilinear point
+    double mass_kg = 0.0;
+    double stiffness = 0.0;             // kappa_M, N / m^alpha
+    double exponent = 0.0;              // alpha (1.5 Hertz ... 3 felt)
+    double contactRadius_m = 0.0;       // support of g_b (raised cosine); below h: bilinear point
 };
 
 // The snare wires: N lossy strings under the carry head, eq. (12), colliding with it through
@@ -44,20 +47,20 @@ enum class CollisionScheme
 
 struct SnareSpec
 {
-    int count = 20;
+    int count = 0;                      // from the schema
     double length_m = 0.30;             // along a chord through the head
     double spacing_m = 0.004;           // between neighbouring wires
     double linearDensity_kg_per_m = 1.6e-3;
-    double tension_N = 30.0;
+    double tension_N = 0.0;             // from the schema
     double sigma0_per_s = 8.0;          // wire losses
     double sigma1_m2_per_s = 2.0e-4;
     double gridTension_N = 0.0;         // design values of the wire grid, eq. (40) (0 / < 0: actual)
     double gridSigma1_m2_per_s = -1.0;
-    double gridCoarseness = 1.0;        // h_s = coarseness * h_s,min(eq. 40); >= 1
+    double gridCoarseness = 1.0;        // h_s = coarseness * h_s,min(eq. 40); >= 1 (from the schema)
     double stiffness = 1.0e9;           // kappa_s, N/m per m^beta
     double exponent = 1.5;              // beta (1 ... 1.5; 1.5 is the Hertz exponent)
-    bool engaged = true;                // false: thrown off, out of contact
-    CollisionScheme scheme = CollisionScheme::newton;
+    bool engaged = true;                // false: thrown off, out of contact (from the schema)
+    CollisionScheme scheme = CollisionScheme::newton; // from the schema
 };
 
 enum class AirModel
@@ -68,8 +71,8 @@ enum class AirModel
 
 struct CavitySpec
 {
-    AirModel model = AirModel::cavity;
-    double shellDepth_m = 0.14;         // H: V0 = pi R^2 H
+    AirModel model = AirModel::cavity;  // from the schema
+    double shellDepth_m = 0.0;          // H: V0 = pi R^2 H (from the schema)
     double gridShellDepth_m = 0.0;      // shallowest depth the grid allows (0: the depth itself)
     double airDensity_kg_per_m3 = 1.21;
     double soundSpeed_m_per_s = 343.0;
@@ -78,28 +81,34 @@ struct CavitySpec
 // Microphones: velocity of each head at a point, and the far-field monopole.
 struct MicSpec
 {
-    double topX_frac = 0.45, topY_frac = 0.2;       // above the batter
+    double topX_frac = 0.0, topY_frac = 0.0;        // above the batter (from the schema)
     double bottomX_frac = 0.35, bottomY_frac = 0.05; // below the carry head, near the snares
     double farDistance_m = 1.0;
     double topGain = 0.5;                // output per m/s
     double bottomGain = 0.5;             // output per m/s
     double farGain = 0.05;               // output per Pa
-    double mixTop = 0.5, mixBottom = 0.3, mixFar = 0.2; // weights of the mixed output
+    double mixTop = 0.0, mixBottom = 0.0, mixFar = 0.0; // weights of the mixed output (from the schema)
 };
 
 struct DrumConfig
 {
+    // The schema's default drum at 48 kHz: mapParameters(ParameterSet {}, 48000).
+    DrumConfig();
+    // The constants alone, every field a parameter sets at 0: what mapParameters fills in.
+    struct Unmapped {};
+    explicit DrumConfig(Unmapped) {}
+
     double sampleRate_Hz = 48000.0;
     MembraneSpec batter;
-    MembraneSpec carry { 0.1778, 0.106, 2060.0, 4.6, 1.0e-3 }; // 3 mil PET, (0,1) near 300 Hz
+    MembraneSpec carry { .radius_m = 0.1778, .density_kg_per_m2 = 0.106 }; // 3 mil PET
     SnareSpec snares;
     CavitySpec cavity;
     MicSpec mics;
     MalletSpec mallet;
     int numMallets = 4;                 // independent mallets for flams and rolls
-    double strikeSpeedMax_m_per_s = 6.0;// MIDI velocity 127
-    double strikeRadius_frac = 0.3;     // default strike point, fraction of R from the centre
-    double outputGain = 1.0;            // scales the mixed output
+    double strikeSpeedMax_m_per_s = 0.0;// MIDI velocity 127 (from the schema)
+    double strikeRadius_frac = 0.0;     // default strike point, fraction of R from the centre (from the schema)
+    double outputGain = 0.0;            // scales the mixed output (from the schema)
 
     // Throws std::invalid_argument when a value is out of physical range or when the
     // grid the scheme needs cannot be built.

@@ -54,7 +54,7 @@ DrumPlayer::DrumPlayer(ModelBuilder::ParameterReader readParameters)
     : builder(std::move(readParameters))
 {
     for (const auto& spec : parameterSpecs())
-        smoothed[static_cast<std::size_t>(spec.id)] = spec.kind == ParamKind::continuous && ! spec.needsNewGrid;
+        smoothed[static_cast<std::size_t>(spec.id)] = spec.kind == ParamKind::continuous && ! spec.rebuildsModel();
 }
 
 DrumPlayer::~DrumPlayer()
@@ -258,7 +258,7 @@ void DrumPlayer::setTarget(ParamId id, double raw) noexcept
     {
         ramps[i].setTarget(v);
     }
-    else if (s.needsNewGrid)
+    else if (s.rebuildsModel())
     {
         // The model's own value is used until the background thread delivers a new model.
     }
@@ -296,14 +296,13 @@ void DrumPlayer::advanceParameters(int numSamples) noexcept
 
     auto params = liveParameters;
     for (const auto& s : parameterSpecs())
-        if (s.needsNewGrid)
+        if (s.rebuildsModel())
             params.setClamped(s.id, current->built.get(s.id));
     params.setClamped(ParamId::snaresEngaged, snaresEngaged ? 1.0 : 0.0);
 
     auto& d = *current->drum;
     const auto cfg = mapParameters(params, d.sampleRate());
-    if (d.canApplyLive(cfg))
-        d.applyLive(cfg);
+    d.applyLive(cfg);
 
     liveDirty = false;
 }

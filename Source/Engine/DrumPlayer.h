@@ -4,7 +4,7 @@
 //
 //  - parameters: continuous ones are smoothed (about 30 ms) and applied to the running drum
 //    every sub-block of at most 32 samples (Drum::applyLive); toggles and choices apply at
-//    once; the needsNewGrid ones (and a new sample rate) need a new model, built on a
+//    once; those whose change needs a new grid or model (and a new sample rate) need a new model, built on a
 //    background thread (ModelExchange.h), handed over lock-free and crossfaded in (20 ms);
 //  - events: a block is split at every event (notes through the articulation map, all sound
 //    off, parameter changes), so each takes effect on its own sample;

@@ -16,7 +16,7 @@ GridKey GridKey::of (const ParameterSet& params, double sampleRate) noexcept
     key.sampleRate = sampleRate;
 
     for (const auto& s : parameterSpecs())
-        if (s.needsNewGrid)
+        if (s.rebuildsModel())
             key.values[static_cast<std::size_t> (s.id)] = params.get (s.id);
 
     return key;

@@ -22,11 +22,11 @@
 namespace snaresim
 {
 
-// What a model's grid depends on: the sample rate and the needsNewGrid parameters.
+// What a model's grid depends on: the sample rate and the parameters that rebuild the model.
 struct GridKey
 {
     double sampleRate = 0.0;
-    std::array<double, kNumParameters> values {};   // needsNewGrid parameters; 0 for the others
+    std::array<double, kNumParameters> values {};   // parameters that rebuild the model; 0 for the others
 
     static GridKey of (const ParameterSet& params, double sampleRate) noexcept;
     bool operator== (const GridKey&) const = default;
@@ -99,7 +99,7 @@ private:
     std::array<std::atomic<T*>, Capacity> slots {};
 };
 
-// The background thread: builds a model whenever the needsNewGrid parameters differ from the
+// The background thread: builds a model whenever the parameters that rebuild the model differ from the
 // last model it built or was told about (polling their atomics, so nobody has to wake it from
 // the audio thread), publishes it in `pending`, and deletes retired models.
 class ModelBuilder final

@@ -12,6 +12,7 @@ namespace
 {
 using P = ParamId;
 using S = ParamScale;
+using N = ChangeNeeds;
 
 constexpr auto C = ParamKind::continuous;
 constexpr auto I = ParamKind::integer;
@@ -22,51 +23,51 @@ constexpr auto K = ParamKind::choice;
 // The head and wire grids are designed for the largest tension, high damping and
 // shallowest shell allowed here, so moving those controls never needs a new grid.
 constexpr std::array<ParameterSpec, kNumParameters> kSpecs {{
-    { P::batterTension, "batter_tension", "Membrane tension", "N/m", 1000.0, 6000.0, 3050.0, S::linear, false,
+    { P::batterTension, "batter_tension", "Membrane tension", "N/m", 1000.0, 6000.0, 3050.0, S::linear, N::coefficients,
       "Tension of the batter (top) head; 3050 N/m puts its (0,1) mode near 200 Hz", C, "", "main" },
-    { P::snareTension, "snare_tension", "Snare tension", "N", 10.0, 100.0, 30.0, S::linear, false,
+    { P::snareTension, "snare_tension", "Snare tension", "N", 10.0, 100.0, 30.0, S::linear, N::coefficients,
       "Tension of each snare wire", C, "", "main" },
-    { P::damping, "damping", "Damping", "%", 0.0, 100.0, 25.0, S::linear, false,
+    { P::damping, "damping", "Damping", "%", 0.0, 100.0, 25.0, S::linear, N::coefficients,
       "Muffling of both heads: the lowest modes ring for 4 s at 0 % down to 0.15 s at 100 %", C, "", "main" },
-    { P::carryTension, "carry_tension", "Carry tension", "N/m", 800.0, 5000.0, 2060.0, S::linear, false,
+    { P::carryTension, "carry_tension", "Carry tension", "N/m", 800.0, 5000.0, 2060.0, S::linear, N::coefficients,
       "Tension of the carry (snare-side) head; 2060 N/m puts its (0,1) mode near 300 Hz", C, "", "heads" },
-    { P::carryFollows, "carry_follows", "Carry follows batter", "", 0.0, 1.0, 0.0, S::linear, false,
-      "Carry tension follows the membrane tension (keeping the default ratio) instead of its own control", B, "", "heads" },
-    { P::highDamping, "high_damping", "High damping", "m^2/s", 0.0, 3.0e-3, 1.0e-3, S::linear, false,
+    { P::carryFollows, "carry_follows", "Carry follows batter", "", 0.0, 1.0, 0.0, S::linear, N::coefficients,
+      "Carry tension follows the membrane tension (keeping the default ratio) instead of its own control", B, "off|on", "heads" },
+    { P::highDamping, "high_damping", "High damping", "m^2/s", 0.0, 3.0e-3, 1.0e-3, S::linear, N::coefficients,
       "Frequency-dependent loss sigma1 of both heads: higher dulls the overtones", C, "", "heads" },
-    { P::shellDepth, "shell_depth", "Shell depth", "m", 0.05, 0.25, 0.14, S::linear, false,
+    { P::shellDepth, "shell_depth", "Shell depth", "m", 0.05, 0.25, 0.14, S::linear, N::coefficients,
       "Depth of the shell: the enclosed air's volume and so its stiffness", C, "", "heads" },
-    { P::airModel, "air_model", "Air model", "", 0.0, 1.0, 1.0, S::linear, false,
+    { P::airModel, "air_model", "Air model", "", 0.0, 1.0, 1.0, S::linear, N::coefficients,
       "Enclosed air: none (heads uncoupled) or the reduced cavity", K, "none|cavity", "heads" },
-    { P::snaresEngaged, "snares_engaged", "Snares on", "", 0.0, 1.0, 1.0, S::linear, false,
-      "Snares on the carry head (1) or thrown off (0)", B, "", "snares" },
-    { P::snareCount, "snare_count", "Snare wires", "", 1.0, 40.0, 20.0, S::linear, true,
+    { P::snaresEngaged, "snares_engaged", "Snares on", "", 0.0, 1.0, 1.0, S::linear, N::coefficients,
+      "Snares on the carry head (1) or thrown off (0)", B, "off|on", "snares" },
+    { P::snareCount, "snare_count", "Snare wires", "", 1.0, 40.0, 20.0, S::linear, N::newGrid,
       "Number of snare wires", I, "", "snares" },
-    { P::strikePosition, "strike_position", "Strike position", "r/R", 0.0, 0.9, 0.3, S::linear, false,
+    { P::strikePosition, "strike_position", "Strike position", "r/R", 0.0, 0.9, 0.3, S::linear, N::coefficients,
       "Distance of the main strike point from the centre, as a fraction of the radius", C, "", "mallet" },
-    { P::strikeSpeedMax, "strike_speed_max", "Strike speed at velocity 127", "m/s", 1.0, 10.0, 6.0, S::linear, false,
+    { P::strikeSpeedMax, "strike_speed_max", "Strike speed at velocity 127", "m/s", 1.0, 10.0, 6.0, S::linear, N::coefficients,
       "Mallet speed for MIDI velocity 127; lower velocities follow the documented curve", C, "", "mallet" },
-    { P::malletMass, "mallet_mass", "Mallet mass", "kg", 0.005, 0.1, 0.028, S::logarithmic, false,
+    { P::malletMass, "mallet_mass", "Mallet mass", "kg", 0.005, 0.1, 0.028, S::logarithmic, N::coefficients,
       "Moving mass of the stick or mallet", C, "", "mallet" },
-    { P::malletStiffness, "mallet_stiffness", "Mallet hardness", "N/m^alpha", 1.0e6, 1.0e10, 1.0e8, S::logarithmic, false,
+    { P::malletStiffness, "mallet_stiffness", "Mallet hardness", "N/m^alpha", 1.0e6, 1.0e10, 1.0e8, S::logarithmic, N::coefficients,
       "Contact stiffness kappa_M of the power-law contact", C, "", "mallet" },
-    { P::malletExponent, "mallet_exponent", "Mallet contact exponent", "", 1.5, 3.0, 1.5, S::linear, false,
+    { P::malletExponent, "mallet_exponent", "Mallet contact exponent", "", 1.5, 3.0, 1.5, S::linear, N::coefficients,
       "Power-law exponent alpha: 1.5 Hertz (stick), up to 3 (felt)", C, "", "mallet" },
-    { P::malletContactRadius, "mallet_contact_radius", "Mallet contact radius", "m", 0.0, 0.02, 0.005, S::linear, false,
+    { P::malletContactRadius, "mallet_contact_radius", "Mallet contact radius", "m", 0.0, 0.02, 0.005, S::linear, N::coefficients,
       "Radius of the contact patch on the head", C, "", "mallet" },
-    { P::micTop, "mic_top", "Top mic level", "", 0.0, 1.0, 0.5, S::linear, false,
+    { P::micTop, "mic_top", "Top mic level", "", 0.0, 1.0, 0.5, S::linear, N::coefficients,
       "Level of the microphone above the batter head in the mix", C, "", "output" },
-    { P::micBottom, "mic_bottom", "Bottom mic level", "", 0.0, 1.0, 0.3, S::linear, false,
+    { P::micBottom, "mic_bottom", "Bottom mic level", "", 0.0, 1.0, 0.3, S::linear, N::coefficients,
       "Level of the microphone under the snares in the mix", C, "", "output" },
-    { P::micRoom, "mic_room", "Room level", "", 0.0, 1.0, 0.2, S::linear, false,
+    { P::micRoom, "mic_room", "Room level", "", 0.0, 1.0, 0.2, S::linear, N::coefficients,
       "Level of the far-field (monopole) pressure in the mix", C, "", "output" },
-    { P::micTopPosition, "mic_top_position", "Top mic position", "r/R", 0.0, 0.9, 0.5, S::linear, false,
+    { P::micTopPosition, "mic_top_position", "Top mic position", "r/R", 0.0, 0.9, 0.5, S::linear, N::coefficients,
       "Distance of the top microphone's point from the centre, as a fraction of the radius", C, "", "output" },
-    { P::outputGain, "output_gain", "Output level", "dB", -48.0, 12.0, 0.0, S::linear, false,
+    { P::outputGain, "output_gain", "Output level", "dB", -48.0, 12.0, 0.0, S::linear, N::coefficients,
       "Output level", C, "", "output" },
-    { P::gridCoarseness, "grid_coarseness", "Quality (grid coarseness)", "", 1.0, 4.0, 2.0, S::linear, true,
+    { P::gridCoarseness, "grid_coarseness", "Quality (grid coarseness)", "", 1.0, 4.0, 2.0, S::linear, N::newGrid,
       "Head and snare-wire grid spacing as a multiple of the stability bounds (eq. 39, 40); larger is cheaper and duller", C, "", "model" },
-    { P::snareSolver, "snare_solver", "Snare collision solver", "", 0.0, 1.0, 0.0, S::linear, true,
+    { P::snareSolver, "snare_solver", "Snare collision solver", "", 0.0, 1.0, 0.0, S::linear, N::newModel,
       "Snare/head collisions: quadratised (one linear solve per sample, real time) or Newton (the paper's eq. 50, iterative)",
       K, "quadratised|newton", "model" },
 }};
@@ -79,9 +80,92 @@ constexpr bool tableInOrder()
     return true;
 }
 static_assert(tableInOrder(), "parameter table must be in ParamId order");
+
+constexpr std::array<ParameterGroup, 6> kGroups {{
+    { "main", "Tension & damping" },
+    { "heads", "Heads & shell" },
+    { "snares", "Snares" },
+    { "mallet", "Mallet & playing" },
+    { "output", "Microphones & output" },
+    { "model", "Model" },
+}};
+
+constexpr bool everyParameterInAGroup()
+{
+    for (const auto& s : kSpecs)
+    {
+        bool found = false;
+        for (const auto& g : kGroups)
+            found = found || g.key == s.group;
+        if (! found)
+            return false;
+    }
+    return true;
+}
+static_assert(everyParameterInAGroup(), "every parameter's group must be in the group table");
+
+constexpr bool toggleAndChoiceNamesComplete()
+{
+    for (const auto& s : kSpecs)
+    {
+        if (s.kind != ParamKind::toggle && s.kind != ParamKind::choice)
+            continue;
+        std::size_t names = 1;
+        for (char c : s.choices)
+            names += c == '|' ? 1 : 0;
+        if (s.choices.empty() || s.minValue != 0.0 || (double) names != s.maxValue + 1.0)
+            return false;
+    }
+    return true;
+}
+static_assert(toggleAndChoiceNamesComplete(), "toggles and choices name every value from 0");
+
+// Version 0 (no version attribute) and 1: the first table, where the damping was the batter's
+// T60 and two keys had other names.
+constexpr std::array<ParameterMigration, 3> kMigrations {{
+    { 2, "batter_decay", P::damping, &dampingFromT60 },
+    { 2, "batter_high_damping", P::highDamping, nullptr },
+    { 2, "listen_position", P::micTopPosition, nullptr },
+}};
+
+constexpr double kLongestT60_s = 4.0, kShortestT60_s = 0.15;
 } // namespace
 
 const std::array<ParameterSpec, kNumParameters>& parameterSpecs() { return kSpecs; }
+
+std::span<const ParameterGroup> parameterGroups() { return kGroups; }
+
+std::string_view groupTitle(std::string_view key)
+{
+    for (const auto& g : kGroups)
+        if (g.key == key)
+            return g.title;
+    return key;
+}
+
+std::span<const ParameterMigration> parameterMigrations() { return kMigrations; }
+
+std::optional<std::pair<ParamId, double>> migrateParameter(int stateVersion, std::string_view key, double value)
+{
+    for (const auto& m : kMigrations)
+        if (stateVersion < m.beforeVersion && key == m.oldKey)
+            return std::pair { m.id, m.convert != nullptr ? m.convert(value) : value };
+    if (const auto id = findParameter(key))
+        return std::pair { *id, value };
+    return std::nullopt;
+}
+
+double dampingT60(double dampingPercent)
+{
+    return kLongestT60_s * std::pow(kShortestT60_s / kLongestT60_s, dampingPercent / 100.0);
+}
+
+double dampingFromT60(double t60)
+{
+    if (! std::isfinite(t60) || t60 <= 0.0)
+        return spec(ParamId::damping).defaultValue;
+    return std::clamp(100.0 * std::log(t60 / kLongestT60_s) / std::log(kShortestT60_s / kLongestT60_s), 0.0, 100.0);
+}
 
 const ParameterSpec& spec(ParamId id) { return kSpecs[static_cast<std::size_t>(id)]; }
 
@@ -131,7 +215,7 @@ std::string describeParameters()
         out << s.key << "  " << s.minValue << "  " << s.maxValue << "  " << s.defaultValue << "  "
             << (s.unit.empty() ? "-" : s.unit) << "  " << (s.scale == ParamScale::logarithmic ? "log" : "lin")
             << "  " << s.name << ": " << s.help << (s.choices.empty() ? "" : " [") << s.choices
-            << (s.choices.empty() ? "" : "]") << (s.needsNewGrid ? " (rebuilds the model)" : "") << "\n";
+            << (s.choices.empty() ? "" : "]") << (s.rebuildsModel() ? " (rebuilds the model)" : "") << "\n";
     return out.str();
 }
 

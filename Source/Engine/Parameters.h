@@ -1,13 +1,18 @@
 #pragma once
-// The one declaration of every user-facing parameter: ID, range, unit, default.
-// The plugin builds its AudioProcessorValueTreeState from this table, the renderer's
-// --list-params / --set read it, and the tests use it. Nothing else declares a parameter.
+// The parameter schema: the one declaration of every user-facing parameter (ID, name, unit,
+// range, skew, default, choices, editor group, what a change needs) and of the saved state's
+// versions. The default drum (DrumConfig{}), the player's live/rebuild decision, the plug-in's
+// parameters, its state, its editor and the renderer's --set / --list-params all follow from
+// it; how values are written and read as text is in ParameterText.h. Nothing else declares a
+// parameter.
 
 #include <array>
 #include <cstddef>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 
 namespace snaresim
 {
@@ -60,6 +65,14 @@ enum class ParamKind
     choice      // 0 .. n-1, names in ParameterSpec::choices ("a|b|c")
 };
 
+// What a change of the parameter needs from the running model.
+enum class ChangeNeeds
+{
+    coefficients, // new coefficients on the same grid: live, sample-accurate (Drum::applyLive)
+    newGrid,      // the same components on other grids: a model built off the audio thread
+    newModel      // other components or solvers: a model built off the audio thread
+};
+
 struct ParameterSpec
 {
     ParamId id;
@@ -70,12 +83,25 @@ struct ParameterSpec
     double maxValue;
     double defaultValue;
     ParamScale scale;
-    bool needsNewGrid;      // true when a change requires rebuilding the model (not only coefficients)
+    ChangeNeeds needs;
     std::string_view help;
     ParamKind kind = ParamKind::continuous;
-    std::string_view choices = "";
-    std::string_view group = "";  // editor group: "main", "heads", "snares", "mallet", "output", "model"
+    std::string_view choices = "";  // choice names "a|b|c"; toggles "off|on"
+    std::string_view group = "";    // key into parameterGroups()
+
+    // True when a change needs a model built off the audio thread.
+    constexpr bool rebuildsModel() const { return needs != ChangeNeeds::coefficients; }
 };
+
+// The editor's groups, in the order it shows them.
+struct ParameterGroup
+{
+    std::string_view key;
+    std::string_view title;
+};
+std::span<const ParameterGroup> parameterGroups();
+// The title of a group key; the key itself when unknown.
+std::string_view groupTitle(std::string_view key);
 
 inline constexpr std::size_t kNumParameters = static_cast<std::size_t>(ParamId::count);
 
@@ -105,6 +131,26 @@ public:
 private:
     std::array<double, kNumParameters> values {};
 };
+
+// Saved states: the version written now, and how older versions' parameters map onto today's
+// (a renamed key, its value converted). A key that is neither today's nor migrated is ignored.
+inline constexpr int kStateVersion = 2;
+struct ParameterMigration
+{
+    int beforeVersion;            // applies to states older than this
+    std::string_view oldKey;
+    ParamId id;
+    double (*convert)(double);    // nullptr: the value as it was
+};
+std::span<const ParameterMigration> parameterMigrations();
+// Today's ID and value for a key read from a state of stateVersion; empty when unknown.
+std::optional<std::pair<ParamId, double>> migrateParameter(int stateVersion, std::string_view key, double value);
+
+// The damping control's law: the heads' lowest modes ring for
+// T60 = 4 s * (0.15 / 4)^(d / 100), so 0 % gives 4 s and 100 % gives 0.15 s.
+double dampingT60(double dampingPercent);
+// Its inverse, clamped to 0..100 %; the default damping for a T60 that is not positive.
+double dampingFromT60(double t60Seconds);
 
 // A value from a host or a saved state, made safe for the engine: finite, in range, whole for
 // toggles, choices and integers (a non-finite value gives the default).

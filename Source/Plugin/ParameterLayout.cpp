@@ -1,5 +1,6 @@
 #include "ParameterLayout.h"
 
+#include "ParameterText.h"
 #include "ToggleParameter.h"
 
 #include <cmath>
@@ -11,7 +12,20 @@ namespace
 {
 juce::String toJuce (std::string_view text)
 {
-    return juce::String (std::string (text));
+    return juce::String (juce::CharPointer_UTF8 (std::string (text).c_str()));
+}
+
+// The schema's text (ParameterText.h), cut to what the host has room for.
+juce::String textOf (const ParameterSpec& spec, double value, int maxLength)
+{
+    const auto text = toJuce (formatValue (spec, value));
+    return maxLength > 0 ? text.substring (0, maxLength) : text;
+}
+
+// What a host or a user typed; text that is no value of the parameter gives its default.
+double valueOf (const ParameterSpec& spec, const juce::String& text)
+{
+    return sanitise (spec, parseValue (spec, text.toStdString(), BareNumber::writtenUnit).value_or (spec.defaultValue));
 }
 
 juce::NormalisableRange<float> makeRange (const ParameterSpec& spec)
@@ -55,21 +69,21 @@ juce::AudioProcessorValueTreeState::ParameterLayout createParameterLayout()
         switch (spec.kind)
         {
             case ParamKind::toggle:
-                layout.add (std::make_unique<ToggleParameter> (id, name, spec.defaultValue >= 0.5, unit));
+                layout.add (std::make_unique<ToggleParameter> (id, name, spec, unit));
                 break;
 
             case ParamKind::choice:
             {
-                auto choices = juce::StringArray::fromTokens (toJuce (spec.choices), "|", "");
-                const int numChoices = (int) std::lround (spec.maxValue - spec.minValue) + 1;
-
-                // The engine reads the choice index (0 .. n-1); name any choice the table leaves unnamed.
-                while (choices.size() < numChoices)
-                    choices.add (juce::String (choices.size()));
+                juce::StringArray choices;
+                for (int i = 0; i < numChoiceNames (spec); ++i)
+                    choices.add (toJuce (formatValue (spec, i)));
 
                 layout.add (std::make_unique<juce::AudioParameterChoice> (
                     id, name, choices, (int) std::lround (spec.defaultValue),
-                    juce::AudioParameterChoiceAttributes().withLabel (unit)));
+                    juce::AudioParameterChoiceAttributes()
+                        .withLabel (unit)
+                        .withStringFromValueFunction ([&spec] (int value, int maxLength) { return textOf (spec, value, maxLength); })
+                        .withValueFromStringFunction ([&spec] (const juce::String& text) { return (int) valueOf (spec, text); })));
                 break;
             }
 
@@ -77,20 +91,19 @@ juce::AudioProcessorValueTreeState::ParameterLayout createParameterLayout()
                 layout.add (std::make_unique<juce::AudioParameterInt> (
                     id, name, (int) std::lround (spec.minValue), (int) std::lround (spec.maxValue),
                     (int) std::lround (spec.defaultValue),
-                    juce::AudioParameterIntAttributes().withLabel (unit)));
+                    juce::AudioParameterIntAttributes()
+                        .withLabel (unit)
+                        .withStringFromValueFunction ([&spec] (int value, int maxLength) { return textOf (spec, value, maxLength); })
+                        .withValueFromStringFunction ([&spec] (const juce::String& text) { return (int) valueOf (spec, text); })));
                 break;
 
             case ParamKind::continuous:
             default:
             {
-                const auto suffix = unit.isEmpty() ? juce::String() : " " + unit;
                 auto attributes = juce::AudioParameterFloatAttributes()
                                       .withLabel (unit)
-                                      .withStringFromValueFunction ([suffix] (float value, int maxLength)
-                                                                    {
-                                                                        auto text = juce::String (value, 4) + suffix;
-                                                                        return maxLength > 0 ? text.substring (0, maxLength) : text;
-                                                                    });
+                                      .withStringFromValueFunction ([&spec] (float value, int maxLength) { return textOf (spec, value, maxLength); })
+                                      .withValueFromStringFunction ([&spec] (const juce::String& text) { return (float) valueOf (spec, text); });
 
                 layout.add (std::make_unique<juce::AudioParameterFloat> (
                     id, name, makeRange (spec), (float) spec.defaultValue, attributes));

@@ -1,5 +1,7 @@
 #include "ParameterPanel.h"
 
+#include "ParameterText.h"
+
 #include <algorithm>
 #include <iterator>
 
@@ -13,11 +15,6 @@ juce::String toJuce (std::string_view s)
     return juce::String (juce::CharPointer_UTF8 (std::string (s).c_str()));
 }
 
-juce::String capitalised (const juce::String& s)
-{
-    return s.substring (0, 1).toUpperCase() + s.substring (1);
-}
-
 // Font sizes at scale 1.
 constexpr float largeNamePx = 15.0f;
 constexpr float largeValuePx = 19.0f;
@@ -28,7 +25,7 @@ constexpr float rowValuePx = 12.5f;
 //==============================================================================
 ParameterControl::ParameterControl (juce::AudioProcessorValueTreeState& state, const ParameterSpec& specToUse,
                                     Style styleToUse, EditorLookAndFeel& lookToUse)
-    : spec (specToUse), style (styleToUse), look (lookToUse), display (ParameterDisplay::forSpec (specToUse))
+    : spec (specToUse), style (styleToUse), look (lookToUse)
 {
     const auto id = toJuce (spec.key);
     const auto tooltip = makeTooltip();
@@ -61,15 +58,8 @@ ParameterControl::ParameterControl (juce::AudioProcessorValueTreeState& state, c
             combo->setTooltip (tooltip);
             combo->setTitle (toJuce (spec.name));
 
-            // The parameter's own names (the processor fills any the table leaves unnamed).
-            juce::StringArray names;
-            if (auto* choice = dynamic_cast<juce::AudioParameterChoice*> (state.getParameter (id)))
-                names = choice->choices;
-            else
-                names = juce::StringArray::fromTokens (toJuce (spec.choices), "|", "");
-
-            for (int i = 0; i < names.size(); ++i)
-                combo->addItem (capitalised (names[i]), i + 1);
+            for (int i = 0; i < numChoiceNames (spec); ++i)
+                combo->addItem (toJuce (formatValue (spec, i)), i + 1);
 
             addAndMakeVisible (*combo);
             comboAttachment = std::make_unique<juce::AudioProcessorValueTreeState::ComboBoxAttachment> (state, id, *combo);
@@ -104,10 +94,13 @@ ParameterControl::ParameterControl (juce::AudioProcessorValueTreeState& state, c
 
             sliderAttachment = std::make_unique<juce::AudioProcessorValueTreeState::SliderAttachment> (state, id, *slider);
 
-            // The attachment installs the parameter's own text conversion; show the editor's.
-            const auto shown = display;
-            slider->textFromValueFunction = [shown] (double v) { return shown.toText (v); };
-            slider->valueFromTextFunction = [shown] (const juce::String& text) { return shown.fromText (text); };
+            // The attachment installs the parameter's float text conversion; show the schema's at double precision.
+            const auto& s = spec;
+            auto* shown = slider.get();
+            slider->textFromValueFunction = [&s] (double v) { return toJuce (formatValue (s, v)); };
+            slider->valueFromTextFunction = [&s, shown] (const juce::String& text) {
+                return parseValue (s, text.toStdString(), BareNumber::writtenUnit).value_or (shown->getValue());
+            };
             slider->setDoubleClickReturnValue (true, spec.defaultValue);
             slider->updateText();
             break;
@@ -128,11 +121,13 @@ juce::String ParameterControl::makeTooltip() const
     auto tip = toJuce (spec.name) + ": " + toJuce (spec.help) + ".";
 
     if (spec.kind == ParamKind::continuous || spec.kind == ParamKind::integer)
-        tip << "\nRange " << display.toText (spec.minValue) << " to " << display.toText (spec.maxValue)
-            << ", default " << display.toText (spec.defaultValue) << ". Double-click resets.";
+        tip << "\nRange " << toJuce (formatValue (spec, spec.minValue)) << " to " << toJuce (formatValue (spec, spec.maxValue))
+            << ", default " << toJuce (formatValue (spec, spec.defaultValue)) << ". Double-click resets.";
 
-    if (spec.needsNewGrid)
-        tip << "\nChanging it rebuilds the model.";
+    if (spec.needs == ChangeNeeds::newGrid)
+        tip << "\nChanging it builds new grids (the sound crossfades).";
+    else if (spec.needs == ChangeNeeds::newModel)
+        tip << "\nChanging it builds a new model (the sound crossfades).";
 
     return tip;
 }
@@ -250,20 +245,24 @@ std::vector<std::unique_ptr<ParameterPanel>> makeParameterPanels (juce::AudioPro
 {
     std::vector<std::unique_ptr<ParameterPanel>> panels;
 
-    for (const auto& spec : parameterSpecs())
+    // The schema's groups in its order, each with its parameters in table order.
+    for (const auto& group : parameterGroups())
     {
-        const auto key = toJuce (spec.group);
-        auto it = std::find_if (panels.begin(), panels.end(), [&] (const auto& p) { return p->getGroupKey() == key; });
+        const auto key = toJuce (group.key);
+        const auto style = largeKnobGroups.contains (key) ? ParameterControl::Style::largeKnob : ParameterControl::Style::row;
+        std::unique_ptr<ParameterPanel> panel;
 
-        if (it == panels.end())
+        for (const auto& spec : parameterSpecs())
         {
-            const auto style = largeKnobGroups.contains (key) ? ParameterControl::Style::largeKnob
-                                                              : ParameterControl::Style::row;
-            panels.push_back (std::make_unique<ParameterPanel> (key, groupTitle (spec.group), style, look));
-            it = std::prev (panels.end());
+            if (spec.group != group.key)
+                continue;
+            if (panel == nullptr)
+                panel = std::make_unique<ParameterPanel> (key, toJuce (group.title), style, look);
+            panel->addParameter (state, spec);
         }
 
-        (*it)->addParameter (state, spec);
+        if (panel != nullptr)
+            panels.push_back (std::move (panel));
     }
 
     return panels;

@@ -1,11 +1,11 @@
 #pragma once
 // Controls built from the parameter table (snaresim::parameterSpecs()): one ParameterControl
 // per parameter (slider for continuous and integer, switch for toggles, combo box for choices,
-// each attached to the AudioProcessorValueTreeState), grouped in ParameterPanels by the table's
-// `group` field. A parameter added to the table appears here without editor changes.
+// each attached to the AudioProcessorValueTreeState), grouped in ParameterPanels by the schema's
+// groups; values written and read by the schema's text rule (ParameterText.h). A parameter
+// added to the schema appears here without editor changes.
 
 #include "EditorLookAndFeel.h"
-#include "ParameterDisplay.h"
 #include "Parameters.h"
 
 #include <juce_audio_processors/juce_audio_processors.h>
@@ -40,7 +40,6 @@ private:
     const ParameterSpec& spec;
     const Style style;
     EditorLookAndFeel& look;
-    const ParameterDisplay display;
 
     juce::Label nameLabel;
     std::unique_ptr<juce::Slider> slider;
@@ -85,7 +84,7 @@ private:
     JUCE_DECLARE_NON_COPYABLE_WITH_LEAK_DETECTOR (ParameterPanel)
 };
 
-// One panel per group of the table, in the table's order of first appearance, the groups in
+// One panel per group of the schema (parameterGroups()), in its order, the groups in
 // `largeKnobGroups` with large knobs and the rest as rows.
 std::vector<std::unique_ptr<ParameterPanel>> makeParameterPanels (juce::AudioProcessorValueTreeState&,
                                                                   EditorLookAndFeel&,

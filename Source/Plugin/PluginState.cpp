@@ -33,9 +33,8 @@ bool PluginState::read (juce::AudioProcessorValueTreeState& parameters, const vo
     if (xml == nullptr || ! xml->hasTagName (treeType))
         return false;
 
-    // Version 0 (no attribute) and 1: the first version's table, where the damping was the
-    // batter's T60 (batter_decay), high_damping was batter_high_damping and mic_top_position
-    // was listen_position. Unknown IDs are ignored; missing parameters take their defaults.
+    // Older versions' keys migrate as the schema says; unknown keys are ignored; missing
+    // parameters take their defaults.
     const int stateVersion = xml->getIntAttribute (versionAttribute, 0);
     std::array<std::optional<double>, kNumParameters> values {};
 
@@ -44,26 +43,12 @@ bool PluginState::read (juce::AudioProcessorValueTreeState& parameters, const vo
         if (! child->hasTagName ("PARAM") || ! child->hasAttribute ("id") || ! child->hasAttribute ("value"))
             continue;
 
-        auto key = child->getStringAttribute ("id").toStdString();
-        double value = child->getDoubleAttribute ("value");
+        const double value = child->getDoubleAttribute ("value");
         if (! std::isfinite (value))
             continue;
 
-        if (stateVersion < 2)
-        {
-            if (key == "batter_decay")
-            {
-                key = "damping";
-                value = dampingFromDecay (value);
-            }
-            else if (key == "batter_high_damping")
-                key = "high_damping";
-            else if (key == "listen_position")
-                key = "mic_top_position";
-        }
-
-        if (const auto id = findParameter (key))
-            values[static_cast<std::size_t> (*id)] = value;
+        if (const auto migrated = migrateParameter (stateVersion, child->getStringAttribute ("id").toStdString(), value))
+            values[static_cast<std::size_t> (migrated->first)] = migrated->second;
     }
 
     // A complete tree: replaceState leaves parameters missing from it at their current values.
@@ -90,14 +75,6 @@ bool PluginState::read (juce::AudioProcessorValueTreeState& parameters, const vo
 
     parameters.replaceState (tree);
     return true;
-}
-
-double PluginState::dampingFromDecay (double t60) noexcept
-{
-    if (! std::isfinite (t60) || t60 <= 0.0)
-        return spec (ParamId::damping).defaultValue;
-
-    return std::clamp (100.0 * std::log (t60 / 4.0) / std::log (0.15 / 4.0), 0.0, 100.0);
 }
 
 } // namespace snaresim::plugin

@@ -4,6 +4,8 @@
 // over: what cannot be read as a SnareSim state changes nothing; a SnareSim state restores
 // every parameter, to its stored value (sanitised) or, when missing or unreadable, its default.
 
+#include "Parameters.h"
+
 #include <juce_audio_processors/juce_audio_processors.h>
 
 namespace snaresim::plugin
@@ -11,10 +13,9 @@ namespace snaresim::plugin
 
 struct PluginState
 {
-    // Written into saved states; states without it are read as version 0.
-    // 1: the first version's table (batter_decay, batter_high_damping, listen_position).
-    // 2: today's table (damping, high_damping, mic_top_position, ...).
-    static constexpr int version = 2;
+    // Written into saved states; states without it are read as version 0. The versions and
+    // their migrations are the schema's (kStateVersion, parameterMigrations(): Parameters.h).
+    static constexpr int version = kStateVersion;
     static constexpr const char* versionAttribute = "stateVersion";
     static constexpr const char* treeType = "SnareSimState";
 
@@ -22,9 +23,6 @@ struct PluginState
 
     // True when the data was a SnareSim state and the parameters were set from it.
     static bool read (juce::AudioProcessorValueTreeState& parameters, const void* data, int sizeInBytes);
-
-    // Damping (%) for a version-1 batter_decay T60 (s): 100 ln(T60 / 4) / ln(0.15 / 4), 0..100.
-    static double dampingFromDecay (double t60Seconds) noexcept;
 };
 
 } // namespace snaresim::plugin

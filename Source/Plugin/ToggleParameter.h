@@ -6,6 +6,8 @@
 // place: the host then read back a value the saved state never had. This one snaps on every
 // set, so the value a host reads, the value saved and the value restored are the same.
 
+#include "ParameterText.h"
+
 #include <juce_audio_processors/juce_audio_processors.h>
 
 #include <atomic>
@@ -16,11 +18,13 @@ namespace snaresim::plugin
 class ToggleParameter final : public juce::RangedAudioParameter
 {
 public:
-    ToggleParameter (const juce::ParameterID& parameterId, const juce::String& parameterName, bool defaultOn,
+    // Default and texts from the schema's entry (which outlives the parameter).
+    ToggleParameter (const juce::ParameterID& parameterId, const juce::String& parameterName, const ParameterSpec& specToUse,
                      const juce::String& unitLabel)
         : RangedAudioParameter (parameterId, parameterName,
                                 juce::AudioProcessorParameterWithIDAttributes().withLabel (unitLabel)),
-          defaultValue (defaultOn ? 1.0f : 0.0f),
+          spec (specToUse),
+          defaultValue (specToUse.defaultValue >= 0.5 ? 1.0f : 0.0f),
           value (defaultValue)
     {
     }
@@ -37,21 +41,19 @@ public:
 
     juce::String getText (float normalised, int maximumLength) const override
     {
-        const juce::String text = snap (normalised) >= 0.5f ? "On" : "Off";
+        const juce::String text (formatValue (spec, snap (normalised)));
         return maximumLength > 0 ? text.substring (0, maximumLength) : text;
     }
 
     float getValueForText (const juce::String& text) const override
     {
-        const auto t = text.trim().toLowerCase();
-        if (t == "on" || t == "yes" || t == "true")
-            return 1.0f;
-        if (t == "off" || t == "no" || t == "false")
-            return 0.0f;
-        return t.getFloatValue() >= 0.5f ? 1.0f : 0.0f;
+        return snap ((float) parseValue (spec, text.toStdString(), BareNumber::writtenUnit).value_or (defaultValue));
     }
 
-    juce::StringArray getAllValueStrings() const override { return { "Off", "On" }; }
+    juce::StringArray getAllValueStrings() const override
+    {
+        return { juce::String (formatValue (spec, 0.0)), juce::String (formatValue (spec, 1.0)) };
+    }
 
     const juce::NormalisableRange<float>& getNormalisableRange() const override { return range; }
 
@@ -59,6 +61,7 @@ private:
     // NaN and anything below one half are off.
     static float snap (float v) noexcept { return v >= 0.5f ? 1.0f : 0.0f; }
 
+    const ParameterSpec& spec;
     const float defaultValue;
     std::atomic<float> value;
     const juce::NormalisableRange<float> range { 0.0f, 1.0f, 1.0f };

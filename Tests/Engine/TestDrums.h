@@ -36,7 +36,8 @@ inline DrumConfig lossyHead()
 namespace snaresim::test
 {
 
-// The whole default drum (both heads, 20 snares engaged, cavity) at 44.1 kHz.
+// The whole default drum (the schema's defaults: both heads, 20 snares engaged, cavity,
+// the quadratised snare solve, Quality 2) at 44.1 kHz.
 inline DrumConfig wholeDrum()
 {
     DrumConfig c;

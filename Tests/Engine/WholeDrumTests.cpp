@@ -351,6 +351,7 @@ TEST_CASE("the cavity couples the heads: the lowest mode splits into an in-phase
 TEST_CASE("the Newton solves converge within their caps through a fortissimo strike", "[drum][solver]")
 {
     DrumConfig cfg = test::wholeDrum();
+    cfg.snares.scheme = CollisionScheme::newton;
     cfg.strikeSpeedMax_m_per_s = 10.0;
     Drum drum(cfg);
     drum.strike(10.0, 0.3, 0.0);

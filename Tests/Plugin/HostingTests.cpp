@@ -760,7 +760,7 @@ void checkParametersFromAnotherThread (Format format)
     whilePlaying (audio, 1.5, 200, [&] (int)
     {
         for (const auto& spec : snaresim::parameterSpecs())
-            if (! spec.needsNewGrid)
+            if (! spec.rebuildsModel())
                 parameter (*plugin, spec.id).setValue ((float) (random() % 1001) / 1000.0f);
     });
     audio.stop();

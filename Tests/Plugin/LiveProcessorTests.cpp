@@ -305,11 +305,11 @@ TEST_CASE ("the factory presets are the programs", "[processor][programs]")
 
 TEST_CASE ("a version-1 state loads with its values mapped", "[processor][state]")
 {
-    CHECK (snaresim::plugin::PluginState::dampingFromDecay (4.0) == Approx (0.0).margin (1e-12));
-    CHECK (snaresim::plugin::PluginState::dampingFromDecay (0.15) == Approx (100.0));
-    CHECK (snaresim::plugin::PluginState::dampingFromDecay (10.0) == 0.0);
-    CHECK (snaresim::plugin::PluginState::dampingFromDecay (0.1) == 100.0);
-    CHECK (snaresim::plugin::PluginState::dampingFromDecay (std::numeric_limits<double>::quiet_NaN()) == 25.0);
+    CHECK (snaresim::dampingFromT60 (4.0) == Approx (0.0).margin (1e-12));
+    CHECK (snaresim::dampingFromT60 (0.15) == Approx (100.0));
+    CHECK (snaresim::dampingFromT60 (10.0) == 0.0);
+    CHECK (snaresim::dampingFromT60 (0.1) == 100.0);
+    CHECK (snaresim::dampingFromT60 (std::numeric_limits<double>::quiet_NaN()) == 25.0);
 
     for (const int version : { 1, 0 })
     {
@@ -485,7 +485,7 @@ TEST_CASE ("the output is finite and free of subnormals whatever the host sends"
                            [&] (int)
                            {
                                for (const auto& spec : snaresim::parameterSpecs())
-                                   if (! spec.needsNewGrid)
+                                   if (! spec.rebuildsModel())
                                        state.getRawParameterValue (juce::String (std::string (spec.key)))
                                            ->store (absurd[random() % absurd.size()]);
                            },
@@ -541,7 +541,7 @@ TEST_CASE ("parameters, programs, state and the editor from the message thread w
         {
             case 0:
                 for (const auto& spec : snaresim::parameterSpecs())
-                    if (! spec.needsNewGrid)
+                    if (! spec.rebuildsModel())
                         parameter (proc, spec.id).setValueNotifyingHost ((float) (random() % 1001) / 1000.0f);
                 break;
             case 1:

@@ -8,6 +8,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <sstream>
+
 #include <juce_audio_basics/juce_audio_basics.h>
 
 #include <charconv>
@@ -365,11 +367,27 @@ TEST_CASE("list params: --list-params lists every parameter", "[renderer]")
     REQUIRE(run.exitCode == 0);
     CHECK(run.err.empty());
     CHECK(run.out == snaresim::describeParameters());
+    // A header, then one line per parameter in the schema's order: key, min, max, default, unit.
+    std::istringstream lines(run.out);
+    std::string line;
+    REQUIRE(std::getline(lines, line));
+    CHECK(line.rfind("# id", 0) == 0);
     for (const auto& spec : snaresim::parameterSpecs())
     {
         INFO("parameter " << spec.key);
-        CHECK(run.out.find(std::string(spec.key)) != std::string::npos);
+        REQUIRE(std::getline(lines, line));
+        std::istringstream fields(line);
+        std::string key, unit;
+        double lo = 0.0, hi = 0.0, def = 0.0;
+        fields >> key >> lo >> hi >> def >> unit;
+        CHECK(key == spec.key);
+        CHECK(lo == Approx(spec.minValue));
+        CHECK(hi == Approx(spec.maxValue));
+        CHECK(def == Approx(spec.defaultValue));
+        CHECK(unit == (spec.unit.empty() ? "-" : std::string(spec.unit)));
+        CHECK((line.find("(rebuilds the model)") != std::string::npos) == spec.rebuildsModel());
     }
+    CHECK_FALSE(std::getline(lines, line));
 }
 
 TEST_CASE("help: --help prints the usage and exits 0", "[renderer]")

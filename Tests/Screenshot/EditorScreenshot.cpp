@@ -14,7 +14,7 @@
 // It needs no X server: JUCE renders components into images without a window (on a machine
 // with a display it connects to it, harmlessly).
 
-#include "ParameterDisplay.h"
+#include "ParameterText.h"
 #include "Parameters.h"
 #include "PluginEditor.h"
 #include "PluginProcessor.h"
@@ -215,7 +215,7 @@ int runChecks (SnareSimAudioProcessor& processor, SnareSimAudioProcessorEditor& 
                     check.expect (std::abs (slider->getValue() - rawValue (processor, spec.key))
                                       <= 1.0e-6 * std::max (1.0, std::abs (spec.maxValue)),
                                   "the slider of " + toJuce (spec.key) + " shows the parameter's value");
-                    const auto unit = snaresim::ui::ParameterDisplay::forSpec (spec).unit;
+                    const auto unit = juce::String (juce::CharPointer_UTF8 (snaresim::valueFormat (spec).unit.c_str()));
                     check.expect (unit.isEmpty() || slider->getTextFromValue (slider->getValue()).endsWith (" " + unit),
                                   "the value of " + toJuce (spec.key) + " shows its unit");
                 }

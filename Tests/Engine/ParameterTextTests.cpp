@@ -1,0 +1,92 @@
+// How parameter values are written and read as text (ParameterText.h): one rule for the host,
+// the editor and the command line.
+
+#include "ParameterText.h"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <random>
+#include <string>
+
+using namespace snaresim;
+
+namespace
+{
+std::string text(ParamId id, double v) { return formatValue(spec(id), v); }
+std::optional<double> read(ParamId id, std::string_view t, BareNumber bare = BareNumber::writtenUnit)
+{
+    return parseValue(spec(id), t, bare);
+}
+} // namespace
+
+TEST_CASE("values are written in readable units", "[parameters][text]")
+{
+    CHECK(text(ParamId::batterTension, 3050.0) == "3050 N/m");
+    CHECK(text(ParamId::snareTension, 30.0) == "30.0 N");
+    CHECK(text(ParamId::damping, 25.0) == "25 %");
+    CHECK(text(ParamId::shellDepth, 0.14) == "140 mm");
+    CHECK(text(ParamId::malletMass, 0.028) == "28.0 g");
+    CHECK(text(ParamId::malletStiffness, 1.0e8) == "1.0e8 N/m^\xce\xb1");
+    CHECK(text(ParamId::malletStiffness, 9.96e8) == "1.0e9 N/m^\xce\xb1"); // the mantissa rounds up to 10
+    CHECK(text(ParamId::highDamping, 1.0e-3) == "1.0e-3 m\xc2\xb2/s");
+    CHECK(text(ParamId::outputGain, -0.001) == "0.0 dB"); // no "-0.0"
+    CHECK(text(ParamId::snareCount, 20.0) == "20");
+    CHECK(text(ParamId::snaresEngaged, 1.0) == "On");
+    CHECK(text(ParamId::snaresEngaged, 0.0) == "Off");
+    CHECK(text(ParamId::airModel, 1.0) == "Cavity");
+    CHECK(text(ParamId::snareSolver, 1.0) == "Newton");
+}
+
+TEST_CASE("text is read in the written unit, the schema's unit, or by name", "[parameters][text]")
+{
+    CHECK(read(ParamId::shellDepth, "140 mm") == Approx(0.14));
+    CHECK(read(ParamId::shellDepth, "140") == Approx(0.14));
+    CHECK(read(ParamId::shellDepth, " 0.12 m ") == Approx(0.12));
+    CHECK(read(ParamId::shellDepth, "0.12", BareNumber::schemaUnit) == Approx(0.12));
+    CHECK(read(ParamId::malletMass, "28 g") == Approx(0.028));
+    CHECK(read(ParamId::malletMass, "0.03 kg") == Approx(0.03));
+    CHECK(read(ParamId::malletStiffness, "2e8 N/m^alpha") == Approx(2.0e8));
+    CHECK(read(ParamId::malletStiffness, "2e8 N/m^\xce\xb1") == Approx(2.0e8));
+    CHECK(read(ParamId::outputGain, "+3 dB") == Approx(3.0));
+    CHECK(read(ParamId::airModel, "cavity") == 1.0);
+    CHECK(read(ParamId::airModel, "None") == 0.0);
+    CHECK(read(ParamId::airModel, "1") == 1.0);
+    CHECK(read(ParamId::snaresEngaged, "on") == 1.0);
+    CHECK(read(ParamId::snaresEngaged, "FALSE") == 0.0);
+    CHECK_FALSE(read(ParamId::shellDepth, "deep").has_value());
+    CHECK_FALSE(read(ParamId::shellDepth, "140 furlongs").has_value());
+    CHECK_FALSE(read(ParamId::airModel, "box").has_value());
+    CHECK_FALSE(read(ParamId::outputGain, "nan").has_value());
+    CHECK_FALSE(read(ParamId::outputGain, "").has_value());
+}
+
+TEST_CASE("every value's text reads back to that value within the text's precision", "[parameters][text]")
+{
+    std::mt19937 random(7);
+    for (const auto& s : parameterSpecs())
+    {
+        INFO(std::string(s.key));
+        const auto format = valueFormat(s);
+        std::uniform_real_distribution<double> within(s.minValue, s.maxValue);
+        for (int i = 0; i < 200; ++i)
+        {
+            double v = i == 0 ? s.minValue : i == 1 ? s.maxValue : i == 2 ? s.defaultValue : within(random);
+            if (s.kind != ParamKind::continuous)
+                v = std::round(v);
+            const auto written = formatValue(s, v);
+            const auto back = parseValue(s, written, BareNumber::writtenUnit);
+            INFO(v << " written " << written);
+            REQUIRE(back.has_value());
+            CHECK(formatValue(s, *back) == written);
+            if (s.kind != ParamKind::continuous)
+                CHECK(*back == v);
+            else if (format.scientific)
+                CHECK(std::abs(*back - v) <= 0.051 * std::abs(v));
+            else
+                CHECK(std::abs(*back - v) <= 0.5 * std::pow(10.0, -format.decimals) / format.scale * (1.0 + 1e-9));
+        }
+        if (s.kind == ParamKind::toggle || s.kind == ParamKind::choice)
+            CHECK(numChoiceNames(s) == (int) s.maxValue + 1);
+    }
+}
