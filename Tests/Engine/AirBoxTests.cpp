@@ -210,3 +210,66 @@ TEST_CASE("a pulse in free field arrives after r / c and falls as 1 / r", "[airb
     CHECK(std::abs(arrival[1] - r2 / c) < h / c);
     CHECK(ratio == Approx(r2 / r1).epsilon(0.05));
 }
+
+TEST_CASE("the closed shell keeps the air inside it", "[airbox]")
+{
+    // With closed ends the shell is a rigid can (eq. 6): a pulse inside never reaches a node
+    // outside. (The cut links are taken back from the full stencil's sum, so round-off leaks.)
+    AirBoxSpec spec;
+    spec.walls = AirWalls::reflecting;
+    spec.size_m = { 0.45, 0.45, 0.3 };
+    spec.shellEnds = ShellEnds::closed;
+    AirBox box(spec, 1.0 / fs);
+    box.setPotential([](double x, double y, double z) {
+        const double r2 = x * x + y * y;
+        return r2 < 0.1 * 0.1 && std::abs(z) < 0.04 ? std::exp(-(r2 + z * z) / (2.0 * 0.03 * 0.03)) : 0.0;
+    });
+    double outside = 0.0, inside = 0.0;
+    for (int step = 0; step < 500; ++step)
+    {
+        box.computeNext();
+        box.advance();
+    }
+    for (int iz = 0; iz < box.nz(); ++iz)
+        for (int iy = 0; iy < box.ny(); ++iy)
+            for (int ix = 0; ix < box.nx(); ++ix)
+            {
+                const double x = box.coordinate(0, ix), y = box.coordinate(1, iy), z = box.coordinate(2, iz);
+                const double v = std::abs(box.now()[box.index(ix, iy, iz)]);
+                const bool in = x * x + y * y < spec.shellRadius_m * spec.shellRadius_m && std::abs(z) < 0.5 * spec.shellDepth_m;
+                (in ? inside : outside) = std::max(in ? inside : outside, v);
+            }
+    std::printf("closed shell: after 500 steps |Psi| at most %.3g inside, %.3g outside\n", inside, outside);
+    CHECK(inside > 1e-3);
+    CHECK(outside < 1e-12 * inside);
+}
+
+TEST_CASE("the air update split over threads gives the same numbers", "[airbox]")
+{
+    AirBoxSpec spec;
+    spec.size_m = { 0.45, 0.45, 0.4 };
+    AirBox one(spec, 1.0 / fs), two(spec, 1.0 / fs);
+    two.setThreads(2);
+    REQUIRE(two.threads() == 2);
+    const auto f = gaussian(0.05, 0.02, -0.06, 0.03);
+    one.setPotential(f);
+    two.setPotential(f);
+    double worst = 0.0;
+    for (int step = 0; step < 200; ++step)
+    {
+        one.computeNext();
+        two.computeNext();
+        for (int iz = 0; iz < one.nz(); ++iz)
+            for (int iy = 0; iy < one.ny(); ++iy)
+                for (int ix = 0; ix < one.nx(); ++ix)
+                {
+                    const long i = one.index(ix, iy, iz);
+                    worst = std::max(worst, std::abs(one.next()[i] - two.next()[i]));
+                }
+        one.advance();
+        two.advance();
+    }
+    CHECK(worst == 0.0);
+    two.setThreads(1);
+    CHECK(two.threads() == 1);
+}
