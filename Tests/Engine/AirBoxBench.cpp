@@ -1,13 +1,11 @@
 // Speed of the air box update against a bare 7-point stencil on the same grid, measured in
-// the same run. Hidden ([.bench]): prints figures, checks nothing about time.
-//   ./build/Tests/Engine/engine_tests "[.bench]"
+// the same run. Prints figures; nothing about time can fail.
+//   cmake --build build --target airbox_bench && ./build/Tests/Engine/airbox_bench
 
 #include "AirBox.h"
 #include "HeadEmbedding.h"
 #include "Membrane.h"
 #include "VectorClones.h"
-
-#include <catch2/catch.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -62,9 +60,7 @@ void report(const char* what, double points, double perStep)
     std::printf("  %-58s %7.3f us/step  %6.3g updates/s  %6.3f s per s of audio\n", what, 1e6 * perStep, points / perStep,
                 perStep * fs);
 }
-} // namespace
-
-TEST_CASE("air box update speed against a bare 7-point stencil", "[.bench]")
+void benchCube()
 {
     const int steps = 2000, repeats = 5;
     AirBoxSpec spec; // 0.6 m cube, sigma_a = 2e-6 m, absorbing walls, the default drum's shell (open)
@@ -152,10 +148,11 @@ TEST_CASE("air box update speed against a bare 7-point stencil", "[.bench]")
                 head.grid().numInterior(), 1e6 * headAlone, 1e6 * coupled, 1e6 * inEmbed, coupled * fs);
     std::printf("  AirBox (sigma_a > 0) / bare: %.2f; sigma_a = 0 / bare: %.2f; 2 threads speed-up %.2f\n", full / bare, noSigma / bare,
                 full / twoThreads);
-    CHECK(std::isfinite(box.energy()));
+    if (! std::isfinite(box.energy()))
+        std::printf("  the air box's energy is not finite\n");
 }
 
-TEST_CASE("air box update speed on a 1 m cube, one and two threads", "[.bench]")
+void benchLargeCube()
 {
     const int steps = 400, repeats = 3;
     AirBoxSpec spec;
@@ -173,5 +170,14 @@ TEST_CASE("air box update speed on a 1 m cube, one and two threads", "[.bench]")
     const double two = secondsPerStep(airStep, steps, repeats);
     report("AirBox::computeNext, sigma_a = 2e-6, 1 thread", points, one);
     report("AirBox::computeNext, sigma_a = 2e-6, 2 threads", points, two);
-    CHECK(std::isfinite(box.energy()));
+    if (! std::isfinite(box.energy()))
+        std::printf("  the air box's energy is not finite\n");
+}
+} // namespace
+
+int main()
+{
+    benchCube();
+    benchLargeCube();
+    return 0;
 }
