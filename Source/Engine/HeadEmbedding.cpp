@@ -1,0 +1,119 @@
+#include "HeadEmbedding.h"
+
+#include "AirBox.h"
+#include "Membrane.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace snaresim
+{
+
+HeadEmbedding::HeadEmbedding(AirBox& a, Membrane& m, double z, double cx, double cy) : air(a), head(m)
+{
+    const double R = head.grid().radius(), ha = air.spacing();
+    const double halfX = 0.5 * air.nx() * ha, halfY = 0.5 * air.ny() * ha;
+    if (std::abs(cx) + R + ha > halfX || std::abs(cy) + R + ha > halfY)
+        throw std::invalid_argument("head embedding: a head of radius " + std::to_string(R) + " m does not fit in the air box");
+    d = air.layerBelow(z);
+    if (d < 1 || d + 2 >= air.nz())
+        throw std::invalid_argument("head embedding: the head's plane z = " + std::to_string(z) + " m is not inside the air box");
+    up = air.index(0, 0, d + 1) - air.index(0, 0, d);
+    below = air.cutDisc(d, cx, cy, R);
+
+    // J: bilinear interpolation of the head's interior nodes at each air node over the head
+    const CircularGrid& g = head.grid();
+    const double hm = g.spacing(), centre = 0.5 * (g.width() - 1);
+    std::vector<int> column((size_t) g.numNodes(), -1);
+    std::vector<Eigen::Triplet<double>> t;
+    for (size_t row = 0; row < below.size(); ++row)
+    {
+        // the node's (x, y) from its index in the padded layout
+        const long i = below[row] - air.index(0, 0, d);
+        const int ix = (int) (i % (air.nx() + 2)), iy = (int) (i / (air.nx() + 2));
+        const double fx = (air.coordinate(0, ix) - cx) / hm + centre, fy = (air.coordinate(1, iy) - cy) / hm + centre;
+        const int jx = (int) std::floor(fx), jy = (int) std::floor(fy);
+        const double ax = fx - jx, ay = fy - jy;
+        const int nodes[4] = { g.index(jx, jy), g.index(jx + 1, jy), g.index(jx, jy + 1), g.index(jx + 1, jy + 1) };
+        const double w[4] = { (1 - ax) * (1 - ay), ax * (1 - ay), (1 - ax) * ay, ax * ay };
+        for (int q = 0; q < 4; ++q)
+        {
+            if (w[q] == 0.0 || g.mask()[(size_t) nodes[q]] == 0.0) // the rim does not move
+                continue;
+            int& col = column[(size_t) nodes[q]];
+            if (col < 0)
+            {
+                col = (int) support.size();
+                support.push_back(nodes[q]);
+            }
+            t.emplace_back((int) row, col, w[q]);
+        }
+    }
+    J.resize((Eigen::Index) below.size(), (Eigen::Index) support.size());
+    J.setFromTriplets(t.begin(), t.end());
+    Jt = J.transpose();
+    refresh();
+}
+
+double HeadEmbedding::planeZ() const
+{
+    return air.planeAbove(d);
+}
+
+void HeadEmbedding::refresh()
+{
+    const double k = air.timeStep(), c = air.soundSpeed(), ha = air.spacing(), hm = head.grid().spacing();
+    alpha = c * c * k / ha;                          // Psi_u - Psi_d gains alpha J (w+ - w-)
+    beta = air.density() * head.forceGain() / (2.0 * k); // w+ loses beta I (D+ - D-)
+    ratio = ha * ha / (hm * hm);                     // I = ratio J^T
+    gamma = alpha * beta * ratio;
+    Eigen::SparseMatrix<double> B = gamma * (J * Jt);
+    Eigen::SparseMatrix<double> id((Eigen::Index) below.size(), (Eigen::Index) below.size());
+    id.setIdentity();
+    B += id;
+    solver.compute(B);
+    if (solver.info() != Eigen::Success)
+        throw std::runtime_error("head embedding: the coupling matrix could not be factored");
+}
+
+void HeadEmbedding::step()
+{
+    const size_t na = below.size(), nm = support.size();
+    double* next = air.next();
+    const double* prev = air.prev();
+    wFree.resize((Eigen::Index) nm);
+    wPrev.resize((Eigen::Index) nm);
+    const auto& wm = head.previousDisplacement();
+    for (size_t j = 0; j < nm; ++j)
+    {
+        wFree[(Eigen::Index) j] = head.nextAt(support[j]);
+        wPrev[(Eigen::Index) j] = wm[(size_t) support[j]];
+    }
+    // air side of the right-hand side: ratio beta (-(D* - D^{n-1}) + alpha J w^{n-1}),
+    // D* = Psi_u - Psi_d from the air's own update
+    y.noalias() = J * wPrev;
+    for (size_t a = 0; a < na; ++a)
+    {
+        const long i = below[a];
+        const double dStar = next[i + up] - next[i], dPrev = prev[i + up] - prev[i];
+        y[(Eigen::Index) a] = ratio * beta * (alpha * y[(Eigen::Index) a] - (dStar - dPrev));
+    }
+    r.noalias() = wFree + Jt * y;
+    // (1 + gamma J^T J)^{-1} = 1 - gamma J^T (1 + gamma J J^T)^{-1} J  (Woodbury)
+    jr.noalias() = J * r;
+    jr = solver.solve(jr);
+    r.noalias() -= gamma * (Jt * jr);
+    for (size_t j = 0; j < nm; ++j)
+        head.setNextAt(support[j], r[(Eigen::Index) j]);
+    // eq. (8): the head's velocity is the air's on both sides
+    dv.noalias() = J * (r - wPrev);
+    for (size_t a = 0; a < na; ++a)
+    {
+        const double t = 0.5 * alpha * dv[(Eigen::Index) a];
+        next[below[a] + up] += t;
+        next[below[a]] -= t;
+    }
+}
+
+} // namespace snaresim

@@ -1,0 +1,60 @@
+#pragma once
+// A head embedded in the air box (eq. 7-8): the head lies in the horizontal plane between
+// air layers d and u = d + 1, and the vertical links between them over the head are cut.
+// Instead, the head's velocity is the air's normal velocity on both sides (eq. 8),
+//   dtt Psi_u = ... + (c^2 / h_a) J dt. w,    dtt Psi_d = ... - (c^2 / h_a) J dt. w,
+// and the pressure jump drives the head (eq. 7, F+ + F- = -rho_a dt (Psi_u - Psi_d)),
+//   rho dtt w = ... - rho_a I dt. (Psi_u - Psi_d),   I = (h_a^2 / h_m^2) J^T,
+// J the bilinear interpolation from the head's grid to the air layer. The power the head
+// gives the air, rho_a h_a^2 (J dt. w)^T dt. (Psi_u - Psi_d), is exactly what it loses, so
+// the coupling neither makes nor destroys energy.
+//
+// Both sides use dt. (centred), so w^{n+1} and Psi^{n+1} over the head are found together:
+// (1 + gamma J^T J) w^{n+1} = r, solved exactly with Woodbury's identity through the
+// air-side matrix 1 + gamma J J^T, factored once (sparse LDL^T; diagonal when h_a > h_m).
+
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+
+#include <vector>
+
+namespace snaresim
+{
+
+class AirBox;
+class Membrane;
+
+class HeadEmbedding
+{
+public:
+    // The head's centre at (cx, cy) and its plane the air grid's plane nearest z.
+    // Throws std::invalid_argument when the head does not fit inside the box with a cell to spare.
+    HeadEmbedding(AirBox& air, Membrane& head, double z_m, double cx_m = 0.0, double cy_m = 0.0);
+
+    // After air.computeNext() and head.computeFree() (and before any other force on the head):
+    // adds the coupling to both next levels.
+    void step();
+
+    // Call after the head's coefficients change (its sigma0 enters the solve).
+    void refresh();
+
+    int layer() const { return d; }
+    double planeZ() const;
+    int airNodes() const { return (int) below.size(); }  // air nodes over the head, per layer
+    int headNodes() const { return (int) support.size(); } // head nodes J reaches
+
+private:
+    AirBox& air;
+    Membrane& head;
+    int d = 0;
+    long up = 0;                 // index offset from layer d to layer d + 1
+    std::vector<long> below;     // air nodes of layer d under the head (rows of J)
+    std::vector<int> support;    // head nodes J reaches (columns of J)
+    Eigen::SparseMatrix<double, Eigen::RowMajor> J;
+    Eigen::SparseMatrix<double, Eigen::RowMajor> Jt;
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
+    double alpha = 0, beta = 0, ratio = 0, gamma = 0;
+    Eigen::VectorXd wFree, wPrev, r, y, jr, dv; // work vectors
+};
+
+} // namespace snaresim

@@ -1,0 +1,148 @@
+// A head embedded in the air box (eq. 7-8): the coupling conserves the total energy to
+// round-off, and the air's mass lowers the head's (0,1) mode.
+
+#include "AirBox.h"
+#include "HeadEmbedding.h"
+#include "Membrane.h"
+#include "SpectrumPeaks.h"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+using namespace snaresim;
+
+namespace
+{
+constexpr double fs = 44100.0;
+
+MembraneSpec losslessBatter()
+{
+    MembraneSpec s; // R = 0.1778 m, rho = 0.353 kg/m^2
+    s.tension_N_per_m = 3050.0; // (0,1) at 200 Hz in vacuum
+    s.sigma0_per_s = 0.0;
+    s.sigma1_m2_per_s = 0.0;
+    return s;
+}
+
+// The head at rest in the (0,1) shape J0(2.4048 r / R), 0.1 mm at the centre.
+void pluck01(Membrane& head)
+{
+    const CircularGrid& g = head.grid();
+    for (int round = 0; round < 2; ++round) // w^n = w^{n-1}: at rest
+    {
+        for (int iy = 0; iy < g.width(); ++iy)
+            for (int ix = 0; ix < g.width(); ++ix)
+            {
+                const int i = g.index(ix, iy);
+                if (g.mask()[(size_t) i] != 0.0)
+                    head.setNextAt(i, 1e-4 * std::cyl_bessel_j(0.0, 2.404825557695773 * std::hypot(g.x(ix), g.x(iy)) / g.radius()));
+            }
+        head.advance();
+    }
+}
+
+// Frequency of the strongest peak of x in [lo, hi] Hz.
+double peakFrequency(const std::vector<double>& x, double lo, double hi)
+{
+    const size_t pad = 8;
+    const auto X = test::hannSpectrum(x, pad);
+    const auto found = test::peaks(X, fs / (double) (pad * x.size()), lo, hi);
+    REQUIRE_FALSE(found.empty());
+    return found.front().frequency;
+}
+
+AirBoxSpec losslessBox()
+{
+    AirBoxSpec spec;
+    spec.sigma_m = 0.0;
+    spec.walls = AirWalls::reflecting;
+    spec.shell = false;
+    spec.size_m = { 0.6, 0.6, 0.6 };
+    return spec;
+}
+} // namespace
+
+TEST_CASE("a head embedded in lossless air conserves the total energy to round-off", "[airbox][embedding][energy]")
+{
+    const double k = 1.0 / fs;
+    AirBox air(losslessBox(), k);
+    Membrane head(losslessBatter(), k);
+    HeadEmbedding embed(air, head, 0.0);
+    std::printf("embedding: head h = %.3f mm (%d nodes), air h = %.3f mm (%ld points); %d air nodes over the head, J reaches %d head nodes\n",
+                1e3 * head.grid().spacing(), head.grid().numInterior(), 1e3 * air.spacing(), air.numPoints(), embed.airNodes(),
+                embed.headNodes());
+    REQUIRE(embed.airNodes() > 500);
+    pluck01(head);
+
+    const int steps = 10000;
+    double e0 = 0.0, drift = 0.0, airMax = 0.0;
+    for (int n = 0; n < steps; ++n)
+    {
+        air.computeNext();
+        head.computeFree();
+        embed.step();
+        const double ea = air.energy(), e = head.energy() + ea;
+        if (n == 0)
+            e0 = e;
+        drift = std::max(drift, std::abs(e - e0) / e0);
+        airMax = std::max(airMax, ea / e0);
+        air.advance();
+        head.advance();
+    }
+    std::printf("embedded head, lossless: total energy relative variation %.3g over %d steps; the air held up to %.3g of it\n", drift,
+                steps, airMax);
+    CHECK(drift < 1e-11);
+    CHECK(airMax > 0.05); // the coupling really moved energy into the air
+    CHECK(head.isFinite());
+}
+
+TEST_CASE("the air's mass lowers the head's (0,1) mode", "[airbox][embedding]")
+{
+    const double k = 1.0 / fs;
+    const int steps = 16384;
+    const int centre = [&] {
+        const Membrane probe(losslessBatter(), k);
+        return probe.grid().nearestInterior(0.0, 0.0);
+    }();
+
+    std::vector<double> vacuum, inAir[2];
+    {
+        Membrane head(losslessBatter(), k);
+        pluck01(head);
+        for (int n = 0; n < steps; ++n)
+        {
+            head.computeFree();
+            head.advance();
+            vacuum.push_back(head.displacement()[(size_t) centre]);
+        }
+    }
+    for (int walls = 0; walls < 2; ++walls)
+    {
+        AirBoxSpec spec = losslessBox();
+        spec.walls = walls == 0 ? AirWalls::reflecting : AirWalls::absorbing;
+        AirBox air(spec, k);
+        Membrane head(losslessBatter(), k);
+        HeadEmbedding embed(air, head, 0.0);
+        pluck01(head);
+        for (int n = 0; n < steps; ++n)
+        {
+            air.computeNext();
+            head.computeFree();
+            embed.step();
+            air.advance();
+            head.advance();
+            inAir[walls].push_back(head.displacement()[(size_t) centre]);
+        }
+    }
+    const double f0 = peakFrequency(vacuum, 100.0, 300.0);
+    const double fr = peakFrequency(inAir[0], 60.0, 300.0), fa = peakFrequency(inAir[1], 60.0, 300.0);
+    std::printf("(0,1) mode of the batter (T = 3050 N/m): %.1f Hz in vacuum, %.1f Hz in a 0.6 m box of air with reflecting walls, "
+                "%.1f Hz with absorbing walls\n",
+                f0, fr, fa);
+    CHECK(f0 == Approx(200.0).epsilon(0.01));
+    CHECK(fr < 0.95 * f0);
+    CHECK(fa < 0.95 * f0);
+}
