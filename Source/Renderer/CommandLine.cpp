@@ -4,6 +4,7 @@
 #include "Microphones.h"
 #include "Presets.h"
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -83,50 +84,60 @@ std::vector<std::string_view> choiceNames(const ParameterSpec& spec)
     return names;
 }
 
-std::optional<int> choiceIndex(const ParameterSpec& spec, std::string_view name)
+// The value of a parameter from its text in --set ID=VALUE: a number, or a choice's name;
+// integer, toggle and choice parameters take whole numbers only (ParameterSet::set, which
+// checks the range later, refuses fractions too; this says why). The one place that reads a
+// parameter's value text.
+double parseParameterValue(const ParameterSpec& parameter, std::string_view text)
 {
-    const auto names = choiceNames(spec);
-    for (std::size_t i = 0; i < names.size(); ++i)
-        if (names[i] == name)
-            return (int) i;
-    return std::nullopt;
-}
+    const auto option = "--set " + std::string(parameter.key);
+    const auto names = choiceNames(parameter);
 
-// "0 none, 1 cavity"
-std::string choiceList(const ParameterSpec& spec)
-{
-    std::string list;
-    const auto names = choiceNames(spec);
-    for (std::size_t i = 0; i < names.size(); ++i)
-    {
-        list += (i == 0 ? "" : ", ") + std::to_string(i) + " ";
-        list.append(names[i]);
-    }
-    return list;
-}
+    if (parameter.kind == ParamKind::choice)
+        if (const auto name = std::find(names.begin(), names.end(), text); name != names.end())
+            return (double) (name - names.begin());
 
-// What a non-continuous parameter takes, for messages.
-std::string wholeValues(const ParameterSpec& spec)
-{
-    switch (spec.kind)
+    // "0 none, 1 cavity"
+    auto choiceList = [&] {
+        std::string list;
+        for (std::size_t i = 0; i < names.size(); ++i)
+        {
+            list += (i == 0 ? "" : ", ") + std::to_string(i) + " ";
+            list.append(names[i]);
+        }
+        return list;
+    };
+
+    if (parameter.kind == ParamKind::choice && ! text.empty() && ! std::isdigit((unsigned char) text.front())
+        && text.front() != '+' && text.front() != '-' && text.front() != '.')
+        fail(option + ": " + inQuotes(text) + " is not one of " + choiceList());
+
+    const double value = parseNumber(text, option);
+    if (parameter.kind == ParamKind::continuous || value == std::round(value))
+        return value;
+
+    std::string takes;
+    switch (parameter.kind)
     {
-        case ParamKind::toggle: return "0 or 1";
-        case ParamKind::choice: return "one of " + choiceList(spec) + " (the number or the name)";
+        case ParamKind::toggle: takes = "0 or 1"; break;
+        case ParamKind::choice: takes = "one of " + choiceList() + " (the number or the name)"; break;
         case ParamKind::integer:
-        case ParamKind::continuous: break;
+        case ParamKind::continuous:
+            takes = "a whole number from " + numberText(parameter.minValue) + " to " + numberText(parameter.maxValue);
+            break;
     }
-    return "a whole number from " + numberText(spec.minValue) + " to " + numberText(spec.maxValue);
+    fail(option + "=" + std::string(text) + ": " + std::string(parameter.key) + " takes " + takes + ", not a fraction");
 }
 
 int parseModel(std::string_view text)
 {
-    const auto& air = spec(ParamId::airModel);
-    if (const auto index = choiceIndex(air, text))
-        return *index;
-    std::string names;
-    for (const auto name : choiceNames(air))
-        (names += names.empty() ? "" : "|").append(name);
-    fail("--model: " + inQuotes(text) + " is not one of " + names);
+    const auto names = choiceNames(spec(ParamId::airModel));
+    if (const auto name = std::find(names.begin(), names.end(), text); name != names.end())
+        return (int) (name - names.begin());
+    std::string list;
+    for (const auto name : names)
+        (list += list.empty() ? "" : "|").append(name);
+    fail("--model: " + inQuotes(text) + " is not one of " + list);
 }
 
 MicOutput parseMic(std::string_view text)
@@ -147,28 +158,10 @@ ParameterOverride parseOverride(std::string_view text)
     if (! id)
         fail("--set: unknown parameter " + inQuotes(key) + " (see --list-params)");
 
-    const auto& parameter = spec(*id);
-    const auto valueText = text.substr(equals + 1);
-
     ParameterOverride result;
     result.id = *id;
+    result.value = parseParameterValue(spec(*id), text.substr(equals + 1));
     result.text = std::string(text);
-    if (parameter.kind == ParamKind::choice)
-        if (const auto index = choiceIndex(parameter, valueText))
-        {
-            result.value = *index;
-            return result;
-        }
-    if (parameter.kind == ParamKind::choice && ! valueText.empty() && ! std::isdigit((unsigned char) valueText.front())
-        && valueText.front() != '+' && valueText.front() != '-' && valueText.front() != '.')
-        fail("--set " + std::string(key) + ": " + inQuotes(valueText) + " is not one of " + choiceList(parameter));
-    result.value = parseNumber(valueText, "--set " + std::string(key));
-
-    // Integer, toggle and choice parameters take whole numbers only (the engine's
-    // ParameterSet::set refuses the rest too; this says why).
-    if (parameter.kind != ParamKind::continuous && result.value != std::round(result.value))
-        fail("--set " + std::string(text) + ": " + std::string(key) + " takes " + wholeValues(parameter)
-             + ", not a fraction");
     return result;
 }
 
