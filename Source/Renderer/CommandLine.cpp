@@ -4,12 +4,18 @@
 #include "Microphones.h"
 #include "Presets.h"
 
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <functional>
 #include <optional>
+#include <set>
 #include <string_view>
 #include <system_error>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -83,50 +89,60 @@ std::vector<std::string_view> choiceNames(const ParameterSpec& spec)
     return names;
 }
 
-std::optional<int> choiceIndex(const ParameterSpec& spec, std::string_view name)
+// The value of a parameter from its text in --set ID=VALUE: a number, or a choice's name;
+// integer, toggle and choice parameters take whole numbers only (ParameterSet::set, which
+// checks the range later, refuses fractions too; this says why). The one place that reads a
+// parameter's value text.
+double parseParameterValue(const ParameterSpec& parameter, std::string_view text)
 {
-    const auto names = choiceNames(spec);
-    for (std::size_t i = 0; i < names.size(); ++i)
-        if (names[i] == name)
-            return (int) i;
-    return std::nullopt;
-}
+    const auto option = "--set " + std::string(parameter.key);
+    const auto names = choiceNames(parameter);
 
-// "0 none, 1 cavity"
-std::string choiceList(const ParameterSpec& spec)
-{
-    std::string list;
-    const auto names = choiceNames(spec);
-    for (std::size_t i = 0; i < names.size(); ++i)
-    {
-        list += (i == 0 ? "" : ", ") + std::to_string(i) + " ";
-        list.append(names[i]);
-    }
-    return list;
-}
+    if (parameter.kind == ParamKind::choice)
+        if (const auto name = std::find(names.begin(), names.end(), text); name != names.end())
+            return (double) (name - names.begin());
 
-// What a non-continuous parameter takes, for messages.
-std::string wholeValues(const ParameterSpec& spec)
-{
-    switch (spec.kind)
+    // "0 none, 1 cavity"
+    auto choiceList = [&] {
+        std::string list;
+        for (std::size_t i = 0; i < names.size(); ++i)
+        {
+            list += (i == 0 ? "" : ", ") + std::to_string(i) + " ";
+            list.append(names[i]);
+        }
+        return list;
+    };
+
+    if (parameter.kind == ParamKind::choice && ! text.empty() && ! std::isdigit((unsigned char) text.front())
+        && text.front() != '+' && text.front() != '-' && text.front() != '.')
+        fail(option + ": " + inQuotes(text) + " is not one of " + choiceList());
+
+    const double value = parseNumber(text, option);
+    if (parameter.kind == ParamKind::continuous || value == std::round(value))
+        return value;
+
+    std::string takes;
+    switch (parameter.kind)
     {
-        case ParamKind::toggle: return "0 or 1";
-        case ParamKind::choice: return "one of " + choiceList(spec) + " (the number or the name)";
+        case ParamKind::toggle: takes = "0 or 1"; break;
+        case ParamKind::choice: takes = "one of " + choiceList() + " (the number or the name)"; break;
         case ParamKind::integer:
-        case ParamKind::continuous: break;
+        case ParamKind::continuous:
+            takes = "a whole number from " + numberText(parameter.minValue) + " to " + numberText(parameter.maxValue);
+            break;
     }
-    return "a whole number from " + numberText(spec.minValue) + " to " + numberText(spec.maxValue);
+    fail(option + "=" + std::string(text) + ": " + std::string(parameter.key) + " takes " + takes + ", not a fraction");
 }
 
 int parseModel(std::string_view text)
 {
-    const auto& air = spec(ParamId::airModel);
-    if (const auto index = choiceIndex(air, text))
-        return *index;
-    std::string names;
-    for (const auto name : choiceNames(air))
-        (names += names.empty() ? "" : "|").append(name);
-    fail("--model: " + inQuotes(text) + " is not one of " + names);
+    const auto names = choiceNames(spec(ParamId::airModel));
+    if (const auto name = std::find(names.begin(), names.end(), text); name != names.end())
+        return (int) (name - names.begin());
+    std::string list;
+    for (const auto name : names)
+        (list += list.empty() ? "" : "|").append(name);
+    fail("--model: " + inQuotes(text) + " is not one of " + list);
 }
 
 MicOutput parseMic(std::string_view text)
@@ -147,28 +163,10 @@ ParameterOverride parseOverride(std::string_view text)
     if (! id)
         fail("--set: unknown parameter " + inQuotes(key) + " (see --list-params)");
 
-    const auto& parameter = spec(*id);
-    const auto valueText = text.substr(equals + 1);
-
     ParameterOverride result;
     result.id = *id;
+    result.value = parseParameterValue(spec(*id), text.substr(equals + 1));
     result.text = std::string(text);
-    if (parameter.kind == ParamKind::choice)
-        if (const auto index = choiceIndex(parameter, valueText))
-        {
-            result.value = *index;
-            return result;
-        }
-    if (parameter.kind == ParamKind::choice && ! valueText.empty() && ! std::isdigit((unsigned char) valueText.front())
-        && valueText.front() != '+' && valueText.front() != '-' && valueText.front() != '.')
-        fail("--set " + std::string(key) + ": " + inQuotes(valueText) + " is not one of " + choiceList(parameter));
-    result.value = parseNumber(valueText, "--set " + std::string(key));
-
-    // Integer, toggle and choice parameters take whole numbers only (the engine's
-    // ParameterSet::set refuses the rest too; this says why).
-    if (parameter.kind != ParamKind::continuous && result.value != std::round(result.value))
-        fail("--set " + std::string(text) + ": " + std::string(key) + " takes " + wholeValues(parameter)
-             + ", not a fraction");
     return result;
 }
 
@@ -258,6 +256,13 @@ std::filesystem::path parsePath(std::string_view text, std::string_view option)
     return std::filesystem::path(std::string(text));
 }
 
+std::string parsePresetName(std::string_view text)
+{
+    if (text.empty())
+        fail("--preset: empty preset name");
+    return std::string(text);
+}
+
 template <typename T>
 void setOnce(std::optional<T>& slot, T value, std::string_view option)
 {
@@ -266,6 +271,169 @@ void setOnce(std::optional<T>& slot, T value, std::string_view option)
     slot = std::move(value);
 }
 
+// parse(VALUE), or parse(VALUE, OPTION) for a parser that names the option in its messages.
+template <typename Parse>
+auto parseValue(const Parse& parse, std::string_view value, std::string_view option)
+{
+    if constexpr (std::is_invocable_v<const Parse&, std::string_view, std::string_view>)
+        return parse(value, option);
+    else
+        return parse(value);
+}
+
+// The options, on a CLI::App that finds each one and its value. Every value is read when CLI11
+// meets it (trigger_on_parse), so the first mistake from the left is the one reported and
+// repeated options keep their order. Nothing of CLI11's is printed: its errors become
+// UserErrors worded here.
+class OptionTable
+{
+public:
+    explicit OptionTable(const std::vector<std::string>& args)
+        : args(args)
+    {
+        app.set_help_flag();   // --help and -h are looked for before (parseCommandLine)
+        app.allow_extras();    // unknown options and stray arguments: failOnExtras
+    }
+
+    // An option with a value, given at most once: slot = parse(VALUE).
+    template <typename T, typename Parse>
+    void once(std::string_view names, std::optional<T>& slot, Parse parse)
+    {
+        addValueOption(names, [&slot, parse](std::string_view value, const std::string& option) {
+            setOnce(slot, T(parseValue(parse, value, option)), option);
+        });
+    }
+
+    // A repeatable option with a value: parse(VALUE) for each, in order.
+    template <typename T, typename Parse>
+    void each(std::string_view names, std::vector<T>& list, Parse parse)
+    {
+        addValueOption(names, [&list, parse](std::string_view value, const std::string& option) {
+            list.push_back(parseValue(parse, value, option));
+        });
+    }
+
+    // An option without a value; it may be repeated.
+    void flag(std::string_view names, bool& slot)
+    {
+        for (const auto& option : spellings(names))
+            app.add_option(option,
+                           [this, option, &slot](const CLI::results_t&) {
+                               failOnExtras();
+                               // Not --flag=VALUE (CLI11 would take =true, =0, ...).
+                               if (args.at(next++) != option)
+                                   fail("option " + option + " takes no value");
+                               slot = true;
+                               return true;
+                           })
+                ->expected(0)
+                ->trigger_on_parse()
+                ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+    }
+
+    void parse()
+    {
+        // CLI11 takes "--opt=" as "--opt" with the next argument as its value; it is an empty value.
+        std::vector<std::string> tokens;
+        for (const auto& arg : args)
+            if (const auto equals = arg.find('=');
+                equals == arg.size() - 1 && longValueOptions.count(arg.substr(0, equals)) > 0)
+            {
+                tokens.push_back(arg.substr(0, equals));
+                tokens.emplace_back();
+            }
+            else
+                tokens.push_back(arg);
+        std::reverse(tokens.begin(), tokens.end()); // CLI11 takes them from the back
+
+        try
+        {
+            app.parse(tokens);
+        }
+        catch (const CLI::ArgumentMismatch&)
+        {
+            // A value option as the last argument (CLI11 takes any next argument as the value).
+            failOnExtras();
+            fail("option " + args.back() + " needs a value (see --help)");
+        }
+        catch (const CLI::Error&)
+        {
+            failOnExtras();
+            fail("the command line cannot be read (see --help)");
+        }
+        failOnExtras();
+    }
+
+private:
+    using Handler = std::function<void(std::string_view value, const std::string& option)>;
+
+    // "-o,--output" -> { "-o", "--output" }: each is an option of its own in CLI11, so that
+    // messages name the spelling used.
+    static std::vector<std::string> spellings(std::string_view names)
+    {
+        std::vector<std::string> result;
+        for (auto rest = names; ! rest.empty();)
+        {
+            const auto comma = rest.find(',');
+            result.emplace_back(rest.substr(0, comma));
+            rest = comma == std::string_view::npos ? std::string_view {} : rest.substr(comma + 1);
+        }
+        return result;
+    }
+
+    void addValueOption(std::string_view names, Handler handler)
+    {
+        for (const auto& option : spellings(names))
+        {
+            if (option.starts_with("--"))
+                longValueOptions.insert(option);
+            app.add_option(option,
+                           [this, option, handler](const CLI::results_t& results) {
+                               failOnExtras();
+                               handler(checkedValue(option, results.front()), option);
+                               return true;
+                           })
+                ->trigger_on_parse()
+                ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+        }
+    }
+
+    // CLI11 does not tell whether the value was attached (--opt=VALUE, -oVALUE) or the next
+    // argument; the argument at `next` does. Attached to a long option it is taken as it is;
+    // -oVALUE and -o=VALUE are not options; a next argument starting with "--" is an option,
+    // so the value is missing.
+    const std::string& checkedValue(const std::string& option, const std::string& value)
+    {
+        const auto& arg = args.at(next);
+        const bool attached = arg != option;
+        next += attached ? 1 : 2;
+        if (attached && ! option.starts_with("--"))
+            fail("unknown option " + inQuotes(arg) + " (see --help)");
+        if (! attached && value.starts_with("--"))
+            fail("option " + option + " needs a value (see --help)");
+        return value;
+    }
+
+    // What CLI11 did not know, kept in order (allow_extras): the first of it is the error.
+    void failOnExtras() const
+    {
+        const auto extras = app.remaining();
+        if (extras.empty())
+            return;
+        const auto& arg = extras.front();
+        if (arg.empty() || arg.front() != '-' || arg == "-")
+            fail("unexpected argument " + inQuotes(arg) + " (see --help)");
+        fail("unknown option " + inQuotes(arg.starts_with("--") ? arg.substr(0, arg.find('=')) : arg) + " (see --help)");
+    }
+
+    const std::vector<std::string>& args;
+    // The argument of the option CLI11 is at: options are met in order and nothing unknown
+    // before them (failOnExtras), so it is where the last option's arguments ended.
+    std::size_t next = 0;
+    std::set<std::string> longValueOptions;
+    CLI::App app;
+};
+
 } // namespace
 
 CommandLine parseCommandLine(const std::vector<std::string>& args)
@@ -273,6 +441,7 @@ CommandLine parseCommandLine(const std::vector<std::string>& args)
     CommandLine result;
     RenderJob& job = result.job;
 
+    // Anywhere, even where a value is expected, and before any error.
     for (const auto& arg : args)
         if (arg == "--help" || arg == "-h")
         {
@@ -284,89 +453,30 @@ CommandLine parseCommandLine(const std::vector<std::string>& args)
     std::optional<double> sampleRate;
     bool listParameters = false;
 
-    for (std::size_t i = 0; i < args.size(); ++i)
-    {
-        std::string option = args[i];
-        std::optional<std::string> inlineValue;
-
-        if (option.rfind("--", 0) == 0)
-        {
-            if (const auto equals = option.find('='); equals != std::string::npos)
-            {
-                inlineValue = option.substr(equals + 1);
-                option.resize(equals);
-            }
-        }
-        else if (option.empty() || option.front() != '-' || option == "-")
-        {
-            fail("unexpected argument " + inQuotes(option) + " (see --help)");
-        }
-
-        // The option's value: "--opt=VALUE" or the next argument. A next argument that
-        // looks like an option ("--...") means the value is missing.
-        auto value = [&]() -> std::string {
-            if (inlineValue)
-                return *inlineValue;
-            if (i + 1 >= args.size() || args[i + 1].rfind("--", 0) == 0)
-                fail("option " + option + " needs a value (see --help)");
-            return args[++i];
-        };
-        auto flag = [&]() {
-            if (inlineValue)
-                fail("option " + option + " takes no value");
-            return true;
-        };
-
-        if (option == "-o" || option == "--output")
-            setOnce(output, parsePath(value(), option), option);
-        else if (option == "--hit")
-            job.hits.push_back(parseHit(value()));
-        else if (option == "--midi")
-            setOnce(job.midiFile, parsePath(value(), option), option);
-        else if (option == "--seconds")
-            setOnce(job.seconds, parseSeconds(value()), option);
-        else if (option == "--sample-rate")
-            setOnce(sampleRate, parseSampleRate(value()), option);
-        else if (option == "--preset")
-        {
-            auto name = value();
-            if (name.empty())
-                fail("--preset: empty preset name");
-            setOnce(job.preset, std::move(name), option);
-        }
-        else if (option == "--set")
-            job.overrides.push_back(parseOverride(value()));
-        else if (option == "--model")
-            setOnce(job.airModel, parseModel(value()), option);
-        else if (option == "--mic")
-            setOnce(job.mic, parseMic(value()), option);
-        else if (option == "--energy-csv")
-            setOnce(job.energyCsv, parsePath(value(), option), option);
-        else if (option == "--energy-plot")
-            setOnce(job.energyPlot, parsePath(value(), option), option);
-        else if (option == "--spectrogram")
-            setOnce(job.spectrogram, parsePath(value(), option), option);
-        else if (option == "--snare-plot")
-            setOnce(job.snarePlot, parsePath(value(), option), option);
-        else if (option == "--lossless")
-            job.lossless = flag();
-        else if (option == "--json")
-            job.json = flag();
-        else if (option == "--list-params")
-            listParameters = flag();
-        else if (option == "--bench")
-            job.bench = flag();
-        else if (option == "--bench-short")
-            job.benchShort = flag();
-        else if (option == "--block-size")
-            setOnce(job.blockSize, parseBlockSize(value()), option);
-        else if (option == "--bench-repeat")
-            setOnce(job.benchRepeats, parseRepeats(value()), option);
-        else if (option == "--bench-scenario")
-            setOnce(job.benchScenario, parseScenario(value()), option);
-        else
-            fail("unknown option " + inQuotes(option) + " (see --help)");
-    }
+    // One line per option (what each does: helpText).
+    OptionTable options(args);
+    options.once("-o,--output", output, parsePath);
+    options.each("--hit", job.hits, parseHit);
+    options.once("--midi", job.midiFile, parsePath);
+    options.once("--seconds", job.seconds, parseSeconds);
+    options.once("--sample-rate", sampleRate, parseSampleRate);
+    options.once("--preset", job.preset, parsePresetName);
+    options.each("--set", job.overrides, parseOverride);
+    options.once("--model", job.airModel, parseModel);
+    options.once("--mic", job.mic, parseMic);
+    options.once("--energy-csv", job.energyCsv, parsePath);
+    options.once("--energy-plot", job.energyPlot, parsePath);
+    options.once("--spectrogram", job.spectrogram, parsePath);
+    options.once("--snare-plot", job.snarePlot, parsePath);
+    options.flag("--lossless", job.lossless);
+    options.flag("--json", job.json);
+    options.flag("--list-params", listParameters);
+    options.flag("--bench", job.bench);
+    options.flag("--bench-short", job.benchShort);
+    options.once("--block-size", job.blockSize, parseBlockSize);
+    options.once("--bench-repeat", job.benchRepeats, parseRepeats);
+    options.once("--bench-scenario", job.benchScenario, parseScenario);
+    options.parse();
 
     if (sampleRate)
         job.sampleRate_Hz = *sampleRate;
