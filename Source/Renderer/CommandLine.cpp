@@ -1,6 +1,7 @@
 #include "CommandLine.h"
 
 #include "Errors.h"
+#include "ParameterText.h"
 #include "Microphones.h"
 #include "Presets.h"
 
@@ -75,57 +76,48 @@ Strike parseHit(std::string_view text)
     return hit;
 }
 
-// The names of a choice parameter ("none|cavity" -> { "none", "cavity" }).
-std::vector<std::string_view> choiceNames(const ParameterSpec& spec)
+// "0 none, 1 cavity"
+std::string choiceList(const ParameterSpec& parameter)
 {
-    std::vector<std::string_view> names;
-    std::string_view rest = spec.choices;
-    while (! rest.empty())
-    {
-        const auto bar = rest.find('|');
-        names.push_back(rest.substr(0, bar));
-        rest = bar == std::string_view::npos ? std::string_view {} : rest.substr(bar + 1);
-    }
-    return names;
+    std::string list;
+    for (int i = 0; i < numChoiceNames(parameter); ++i)
+        (list += (i == 0 ? "" : ", ") + std::to_string(i) + " ").append(choiceName(parameter, i));
+    return list;
 }
 
-// The value of a parameter from its text in --set ID=VALUE: a number, or a choice's name;
-// integer, toggle and choice parameters take whole numbers only (ParameterSet::set, which
-// checks the range later, refuses fractions too; this says why). The one place that reads a
-// parameter's value text.
+// The value of a parameter from its text in --set ID=VALUE, read by the schema's text rule
+// (ParameterText.h): a number in the schema's unit or with a unit ("140 mm"), a choice's or a
+// toggle's name; integer, toggle and choice parameters take whole numbers only
+// (ParameterSet::set, which checks the range later, refuses fractions too; this says why).
 double parseParameterValue(const ParameterSpec& parameter, std::string_view text)
 {
     const auto option = "--set " + std::string(parameter.key);
-    const auto names = choiceNames(parameter);
+    const bool named = parameter.kind == ParamKind::choice || parameter.kind == ParamKind::toggle;
+    const auto value = parseValue(parameter, text, BareNumber::schemaUnit);
 
-    if (parameter.kind == ParamKind::choice)
-        if (const auto name = std::find(names.begin(), names.end(), text); name != names.end())
-            return (double) (name - names.begin());
-
-    // "0 none, 1 cavity"
-    auto choiceList = [&] {
-        std::string list;
-        for (std::size_t i = 0; i < names.size(); ++i)
-        {
-            list += (i == 0 ? "" : ", ") + std::to_string(i) + " ";
-            list.append(names[i]);
-        }
-        return list;
-    };
-
-    if (parameter.kind == ParamKind::choice && ! text.empty() && ! std::isdigit((unsigned char) text.front())
-        && text.front() != '+' && text.front() != '-' && text.front() != '.')
-        fail(option + ": " + inQuotes(text) + " is not one of " + choiceList());
-
-    const double value = parseNumber(text, option);
-    if (parameter.kind == ParamKind::continuous || value == std::round(value))
-        return value;
+    if (! value)
+    {
+        if (named && ! text.empty() && ! std::isdigit((unsigned char) text.front()) && text.front() != '+'
+            && text.front() != '-' && text.front() != '.')
+            fail(option + ": " + inQuotes(text) + " is not one of " + choiceList(parameter));
+        // A number followed by a unit the parameter does not have; otherwise why it is not a number.
+        std::string_view digits = text.substr(! text.empty() && text.front() == '+' ? 1 : 0);
+        double number = 0.0;
+        const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), number);
+        if (ec != std::errc {} || end == digits.data() + digits.size() || ! std::isfinite(number))
+            parseNumber(text, option);
+        const auto unit = valueFormat(parameter);
+        fail(option + ": " + inQuotes(text) + " is not a number in " + (unit.unit.empty() ? std::string("no unit") : unit.unit)
+             + (unit.schemaUnit != unit.unit ? " or " + unit.schemaUnit : std::string()));
+    }
+    if (parameter.kind == ParamKind::continuous || *value == std::round(*value))
+        return *value;
 
     std::string takes;
     switch (parameter.kind)
     {
         case ParamKind::toggle: takes = "0 or 1"; break;
-        case ParamKind::choice: takes = "one of " + choiceList() + " (the number or the name)"; break;
+        case ParamKind::choice: takes = "one of " + choiceList(parameter) + " (the number or the name)"; break;
         case ParamKind::integer:
         case ParamKind::continuous:
             takes = "a whole number from " + numberText(parameter.minValue) + " to " + numberText(parameter.maxValue);
@@ -136,12 +128,12 @@ double parseParameterValue(const ParameterSpec& parameter, std::string_view text
 
 int parseModel(std::string_view text)
 {
-    const auto names = choiceNames(spec(ParamId::airModel));
-    if (const auto name = std::find(names.begin(), names.end(), text); name != names.end())
-        return (int) (name - names.begin());
+    const auto& air = spec(ParamId::airModel);
+    if (const auto index = choiceIndex(air, text))
+        return *index;
     std::string list;
-    for (const auto name : names)
-        (list += list.empty() ? "" : "|").append(name);
+    for (int i = 0; i < numChoiceNames(air); ++i)
+        (list += list.empty() ? "" : "|").append(choiceName(air, i));
     fail("--model: " + inQuotes(text) + " is not one of " + list);
 }
 

@@ -186,6 +186,21 @@ TEST_CASE("parameter values in --set: numbers, choice names, whole numbers where
     CHECK(errorOf(playable({ "--set", "nope=1" })) == "--set: unknown parameter 'nope' (see --list-params)");
 }
 
+TEST_CASE("the values of --set are read by the schema text rule: units, names of toggles and choices", "[renderer][command-line]")
+{
+    auto valueOf = [](const char* assignment) { return jobOf(playable({ "--set", assignment })).overrides.at(0).value; };
+    CHECK(valueOf("shell_depth=0.12") == Approx(0.12)); // a bare number is in the schema's unit
+    CHECK(valueOf("shell_depth=120 mm") == Approx(0.12));
+    CHECK(valueOf("shell_depth=120mm") == Approx(0.12));
+    CHECK(valueOf("mallet_mass=28 g") == Approx(0.028));
+    CHECK(valueOf("snares_engaged=off") == 0.0);
+    CHECK(valueOf("snares_engaged=On") == 1.0);
+    CHECK(valueOf("air_model=Cavity") == 1.0);
+    CHECK(valueOf("snare_solver=newton") == 1.0);
+    CHECK(errorOf(playable({ "--set", "shell_depth=120 furlongs" })) == "--set shell_depth: '120 furlongs' is not a number in mm or m");
+    CHECK(errorOf(playable({ "--set", "snares_engaged=maybe" })) == "--set snares_engaged: 'maybe' is not one of 0 off, 1 on");
+}
+
 TEST_CASE("help: --help anywhere wins, and --list-params reads the whole line first", "[renderer][command-line]")
 {
     for (const auto& args : { Args { "--help" }, Args { "-h" }, Args { "--bogus", "-h" }, Args { "--preset", "--help" },
