@@ -1,10 +1,13 @@
 #pragma once
-// The assembled model (eq. 1-50, the air box replaced by the reduced cavity): batter and carry heads,
-// mallets with their contact, snare wires with their collisions and attached ends, and the
-// cavity between the heads. The only class the plugin and the renderer talk to.
+// The assembled model (eq. 1-50, the air box replaced by the reduced cavity), in the paper's
+// terms: components, each with its own state, free update and energy (the batter and carry
+// Membranes, the SnareWires, the Mallets, the Cavity), and couplings, each with its own forces,
+// solve and energy (MalletContact, SnareContact with the attached ends, CavityCoupling).
+// step() runs them in a fixed order. The only class the plugin and the renderer talk to.
 
 #include "Articulations.h"
 #include "Cavity.h"
+#include "CavityCoupling.h"
 #include "DrumConfig.h"
 #include "DrumSnapshot.h"
 #include "EnergyLedger.h"
@@ -51,6 +54,8 @@ class Drum
 public:
     // Throws std::invalid_argument (readable message) when the config cannot be simulated.
     explicit Drum(const DrumConfig& config);
+    Drum(const Drum&) = delete; // the couplings hold references to the components
+    Drum& operator=(const Drum&) = delete;
 
     const DrumConfig& config() const { return cfg; }
     double sampleRate() const { return cfg.sampleRate_Hz; }
@@ -116,12 +121,15 @@ private:
 
     DrumConfig cfg;
     double k;
-    Cavity air;
-    Membrane batterHead, carryHead;
-    SnareWires wires;
-    SnareContact snareCoupling;
-    std::vector<Mallet> mallets;
-    MalletContact malletCoupling;
+    // Components and the couplings between them (each coupling after what it couples).
+    Cavity air;                  // component
+    Membrane batterHead, carryHead; // components
+    SnareWires wires;            // component
+    SnareContact snareCoupling;  // coupling: wires - carry head
+    std::vector<Mallet> mallets; // components; never resized after construction
+    MalletContact malletCoupling; // coupling: mallets - batter
+    CavityCoupling airCoupling;  // coupling: heads - cavity
+
     GridDistribution topMic, bottomMic;
     EnergyLedger ledger;
     SolverStats stats;

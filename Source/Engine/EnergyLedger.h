@@ -16,7 +16,7 @@ struct EnergyLedger
     double snares_J = 0.0;      // eq. (38): wires and their collision potential
     double cavity_J = 0.0;      // (K/2) dV^{n+1} dV^n
     double dissipated_J = 0.0;  // cumulative sum of k q^n (head and wire losses) and of the
-                                // quadratised snare solve's psi resets (SnareContact::correctionLoss)
+                                // quadratised snare solve's psi resets (SnareContact::stepLoss)
     double injected_J = 0.0;    // net energy from the player: strikes, retrieved mallets, snares on/off
 
     double total() const { return batter_J + carry_J + mallets_J + snares_J + cavity_J; }
