@@ -1,5 +1,7 @@
 #include "Drum.h"
 
+#include "EnergyTerm.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -30,6 +32,18 @@ std::vector<Mallet> makeMallets(const DrumConfig& c, const Membrane& batter, dou
 }
 } // namespace
 
+// The ledger's terms in column order, eq. (34): H = H_b + H_c + H_M + H_s + the cavity's, each
+// the sum of its owners' energies (and step losses) in the order listed. A new component or
+// coupling that stores energy adds its term here. (CavityCoupling stores none: no term lists it.)
+auto Drum::energyTerms() const
+{
+    return std::tuple { EnergyTerm("batter", batterHead),                          // eq. (35)
+                        EnergyTerm("carry", carryHead),                            // eq. (35)
+                        EnergyTerm("mallets", mallets, malletCoupling),            // eq. (37)
+                        EnergyTerm("snares", wires, snareCoupling).when(engaged),  // eq. (38)
+                        EnergyTerm("cavity", air) };                               // (K/2) dV^{n+1} dV^n
+}
+
 Drum::Drum(const DrumConfig& config)
     : cfg(validated(config)), k(1.0 / config.sampleRate_Hz), air(cfg.cavity, cfg.batter.radius_m),
       batterHead(cfg.batter, k, reserveFor(cfg, cfg.batter)), carryHead(cfg.carry, k, reserveFor(cfg, cfg.carry)),
@@ -37,6 +51,10 @@ Drum::Drum(const DrumConfig& config)
       mallets(makeMallets(cfg, batterHead, k)), malletCoupling(batterHead, mallets), airCoupling(batterHead, carryHead, air),
       engaged(cfg.snares.engaged)
 {
+    const auto terms = energyTerms();
+    registerTerms(ledger, terms);
+    malletsTerm = termOwning(terms, mallets);
+    snaresTerm = termOwning(terms, wires);
     const double R = cfg.batter.radius_m;
     topMic.reserve(4);
     bottomMic.reserve(4);
@@ -82,7 +100,7 @@ void Drum::strike(double speed, double xFrac, double yFrac)
         after = held(m);
     }
     ledger.injected_J += after - before;
-    ledger.mallets_J += after - before;
+    ledger.change(malletsTerm, after - before);
 }
 
 void Drum::strikeAtDefaultPoint(double speed) { strike(speed, cfg.strikeRadius_frac, 0.0); }
@@ -202,7 +220,7 @@ void Drum::setSnaresEngaged(bool on)
     engaged = on;
     const double after = on ? wires.energyBeforeStep() : 0.0;
     ledger.injected_J += after - before;
-    ledger.snares_J += after - before;
+    ledger.change(snaresTerm, after - before);
 }
 
 double Drum::step()
@@ -301,19 +319,7 @@ void Drum::retrieveRisingMallets()
         }
 }
 
-void Drum::updateEnergy()
-{
-    ledger.batter_J = batterHead.energy();
-    ledger.carry_J = carryHead.energy();
-    double kinetic = 0.0;
-    for (const auto& m : mallets)
-        kinetic += m.energy();
-    ledger.mallets_J = kinetic + malletCoupling.energy();
-    ledger.snares_J = engaged ? wires.energy() + snareCoupling.energy() : 0.0;
-    ledger.cavity_J = air.energy();
-    ledger.dissipated_J += batterHead.stepLoss() + carryHead.stepLoss()
-                         + (engaged ? wires.stepLoss() + snareCoupling.stepLoss() : 0.0);
-}
+void Drum::updateEnergy() { record(ledger, energyTerms()); }
 
 void Drum::process(float* out, int n)
 {
@@ -330,7 +336,7 @@ void Drum::reset()
     air.clear();
     for (auto& m : mallets)
         m.park();
-    ledger = {};
+    ledger.clearValues();
     signals = {};
     dVPrev = 0.0;
     samplesRendered = 0;

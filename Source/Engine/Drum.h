@@ -3,7 +3,8 @@
 // terms: components, each with its own state, free update and energy (the batter and carry
 // Membranes, the SnareWires, the Mallets, the Cavity), and couplings, each with its own forces,
 // solve and energy (MalletContact, SnareContact with the attached ends, CavityCoupling).
-// step() runs them in a fixed order. The only class the plugin and the renderer talk to.
+// step() runs them in a fixed order; energyTerms() lists which of them each ledger term sums.
+// The only class the plugin and the renderer talk to.
 
 #include "Articulations.h"
 #include "Cavity.h"
@@ -89,7 +90,8 @@ public:
     // Render n samples of the mix (overwrites out). Real-time safe.
     void process(float* out, int n);
 
-    // Energy bookkeeping, computed every step while enabled (costs about one extra pass).
+    // Energy bookkeeping, computed every step while enabled (costs about one extra pass): one
+    // term per entry of energyTerms() (batter, carry, mallets, snares, cavity), in that order.
     void setEnergyTracking(bool on) { trackEnergy = on; }
     const EnergyLedger& energy() const { return ledger; }
 
@@ -113,6 +115,7 @@ public:
     int numMallets() const { return (int) mallets.size(); }
 
 private:
+    auto energyTerms() const; // the ledger's terms and their owners (Drum.cpp)
     void updateEnergy();
     void retrieveRisingMallets();
     double velocityAt(const Membrane& head, const GridDistribution& point) const;
@@ -132,6 +135,7 @@ private:
 
     GridDistribution topMic, bottomMic;
     EnergyLedger ledger;
+    int malletsTerm = -1, snaresTerm = -1; // the ledger terms a strike and the snares switch change
     SolverStats stats;
     MicSignals signals;
     bool trackEnergy = false;
