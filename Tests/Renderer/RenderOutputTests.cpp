@@ -12,6 +12,9 @@
 
 #include <charconv>
 #include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
 
 using namespace rendertest;
 
@@ -362,6 +365,67 @@ TEST_CASE("energy csv: --energy-csv writes the header and one row per sample", "
     CHECK(maxDeviation <= 1.0e-9 * maxTotal);    // balance constant (lossy run)
 
     CHECK(entries(dir.out()) == std::vector<std::string> { "e.csv", "e.wav" });
+}
+
+TEST_CASE("energy terms: the CSV's columns and the JSON's energy_max_J are the engine ledger's terms, in order", "[renderer]")
+{
+    TempDir dir;
+    const auto wav = dir.out() / "terms.wav";
+    const auto csv = dir.out() / "terms.csv";
+    const auto run = runRenderer({ "-o", wav.string(), "--energy-csv", csv.string(), "--hit", "0:110", "--seconds",
+                                   "0.05", "--sample-rate", "44100", "--json" },
+                                 dir.root() / "capture");
+    INFO("stdout: " << run.out << "\nstderr: " << run.err);
+    REQUIRE(run.exitCode == 0);
+
+    // The ledger of the drum the renderer builds (the default parameters).
+    const snaresim::Drum drum(snaresim::makeDrumConfig(snaresim::ParameterSet {}, 44100.0));
+    std::vector<std::string> termColumns;
+    for (const auto& term : drum.energy().terms())
+        termColumns.push_back(snaresim::EnergyLedger::columnName(term.name));
+    REQUIRE(! termColumns.empty());
+
+    const auto rows = lines(readText(csv));
+    REQUIRE(rows.size() == 2206); // the header and 0.05 s at 44.1 kHz
+    const auto columns = energyColumns(rows.front());
+    std::vector<std::string> csvTerms;
+    for (const auto t : columns.terms)
+        csvTerms.push_back(columns.names[t]);
+    CHECK(csvTerms == termColumns);
+
+    // The JSON: energy_max_J holds each term and the total, in the CSV's order, each the
+    // largest value of its column.
+    const auto json = parseJson(run.out);
+    REQUIRE(json.isObject());
+    const auto maxima = json["energy_max_J"];
+    REQUIRE(maxima.getDynamicObject() != nullptr);
+    std::vector<std::string> keys;
+    for (const auto& property : maxima.getDynamicObject()->getProperties())
+        keys.push_back(property.name.toString().toStdString());
+    auto expectedKeys = termColumns;
+    expectedKeys.push_back("total_J");
+    CHECK(keys == expectedKeys);
+
+    std::vector<std::size_t> checked = columns.terms;
+    checked.push_back(columns.total);
+    std::vector<double> largest(checked.size(), -std::numeric_limits<double>::infinity());
+    for (std::size_t i = 1; i < rows.size(); ++i)
+    {
+        const auto fields = csvFields(rows[i]);
+        REQUIRE(fields.size() == columns.names.size());
+        for (std::size_t c = 0; c < checked.size(); ++c)
+            largest[c] = std::max(largest[c], std::stod(fields[checked[c]]));
+    }
+    for (std::size_t c = 0; c < checked.size(); ++c)
+    {
+        const auto& name = columns.names[checked[c]];
+        INFO("column " << name);
+        CHECK((double) maxima[juce::Identifier(name)] == Approx(largest[c]).epsilon(1e-12));
+    }
+    // The mallet brought the strike's energy and gave some of it to the batter.
+    CHECK((double) maxima["batter_J"] > 0.0);
+    CHECK((double) maxima["mallets_J"] > 0.0);
+    CHECK((double) maxima["total_J"] > 0.0);
 }
 
 TEST_CASE("list params: --list-params lists every parameter", "[renderer]")
