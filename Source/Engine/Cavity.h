@@ -1,7 +1,8 @@
 #pragma once
-// The enclosed air as a uniform-pressure adiabatic cavity coupling the two heads, in place of
-// the paper's air box (eq. 5-8; docs/MODEL.md, "Cavity"): with both heads' displacements
-// positive upward the volume change is dV = h_b^2 sum(w_b) - h_c^2 sum(w_c) and
+// The enclosed air as a uniform-pressure adiabatic cavity, in place of the paper's air box
+// (eq. 5-8; docs/MODEL.md, "Cavity"). A component: its state is the volume change dV, its
+// energy (K/2) dV^{n+1} dV^n. CavityCoupling ties it to the heads: with both heads'
+// displacements positive upward dV = h_b^2 sum(w_b) - h_c^2 sum(w_c) and
 // p = -(rho_a c_a^2 / V0) dV; the pressure pushes the batter up (+p) and the carry head down (-p).
 //
 // Explicit form: p^n from dV^n. Its energy is (K/2) dV^{n+1} dV^n, which can dip below
@@ -33,6 +34,7 @@ public:
     double volumeChangeNow() const { return dVNow; }
     double volumeChangeNext() const { return dVNext; }
     double energy() const { return 0.5 * K * dVNext * dVNow; } // at n+1/2
+    double stepLoss() const { return 0.0; }                     // adiabatic, lossless
     void advance() { dVNow = dVNext; }
     void clear() { dVNow = dVNext = 0.0; }
 

@@ -1,5 +1,7 @@
 #include "Drum.h"
 
+#include "EnergyTerm.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -19,16 +21,40 @@ double reserveFor(const DrumConfig& c, const MembraneSpec& m)
 {
     return Cavity::kineticReserve(c.cavity, m.radius_m, m.density_kg_per_m2, 1.0 / c.sampleRate_Hz);
 }
+
+std::vector<Mallet> makeMallets(const DrumConfig& c, const Membrane& batter, double k)
+{
+    std::vector<Mallet> mallets;
+    mallets.reserve((size_t) c.numMallets);
+    for (int i = 0; i < c.numMallets; ++i)
+        mallets.emplace_back(c.mallet, batter.grid(), k);
+    return mallets;
+}
 } // namespace
+
+// The ledger's terms in column order, eq. (34): H = H_b + H_c + H_M + H_s + the cavity's, each
+// the sum of its owners' energies (and step losses) in the order listed. A new component or
+// coupling that stores energy adds its term here. (CavityCoupling stores none: no term lists it.)
+auto Drum::energyTerms() const
+{
+    return std::tuple { EnergyTerm("batter", batterHead),                          // eq. (35)
+                        EnergyTerm("carry", carryHead),                            // eq. (35)
+                        EnergyTerm("mallets", mallets, malletCoupling),            // eq. (37)
+                        EnergyTerm("snares", wires, snareCoupling).when(engaged),  // eq. (38)
+                        EnergyTerm("cavity", air) };                               // (K/2) dV^{n+1} dV^n
+}
 
 Drum::Drum(const DrumConfig& config)
     : cfg(validated(config)), k(1.0 / config.sampleRate_Hz), air(cfg.cavity, cfg.batter.radius_m),
       batterHead(cfg.batter, k, reserveFor(cfg, cfg.batter)), carryHead(cfg.carry, k, reserveFor(cfg, cfg.carry)),
-      wires(cfg.fittedSnares(), cfg.carry.radius_m, k), snareCoupling(cfg.snares, wires, carryHead), engaged(cfg.snares.engaged)
+      wires(cfg.fittedSnares(), cfg.carry.radius_m, k), snareCoupling(cfg.snares, wires, carryHead),
+      mallets(makeMallets(cfg, batterHead, k)), malletCoupling(batterHead, mallets), airCoupling(batterHead, carryHead, air),
+      engaged(cfg.snares.engaged)
 {
-    mallets.reserve((size_t) cfg.numMallets);
-    for (int i = 0; i < cfg.numMallets; ++i)
-        mallets.emplace_back(cfg.mallet, batterHead.grid(), k);
+    const auto terms = energyTerms();
+    registerTerms(ledger, terms);
+    malletsTerm = termOwning(terms, mallets);
+    snaresTerm = termOwning(terms, wires);
     const double R = cfg.batter.radius_m;
     topMic.reserve(4);
     bottomMic.reserve(4);
@@ -62,17 +88,19 @@ void Drum::strike(double speed, double xFrac, double yFrac)
     }
     nextMallet = (chosen + 1) % (int) mallets.size();
 
+    // The mallet's energy with its contact potential at n-1/2 (eq. 37): what the strike replaces.
     Mallet& m = mallets[(size_t) chosen];
-    const double before = m.energyBeforeStep();
+    auto held = [](const Mallet& ml) { return ml.energyBeforeStep() + MalletContact::potentialEnergyBeforeStep(ml); };
+    const double before = held(m);
     const double R = cfg.batter.radius_m;
     double after = 0.0;
     if (m.aim(xFrac * R, yFrac * R))
     {
         m.launch(batterHead.sampleNow(m.patch()), batterHead.samplePrev(m.patch()), speed);
-        after = m.energyBeforeStep();
+        after = held(m);
     }
     ledger.injected_J += after - before;
-    ledger.mallets_J += after - before;
+    ledger.change(malletsTerm, after - before);
 }
 
 void Drum::strikeAtDefaultPoint(double speed) { strike(speed, cfg.strikeRadius_frac, 0.0); }
@@ -161,9 +189,9 @@ void Drum::setSnaresEngaged(bool on)
 {
     if (on == engaged)
         return;
-    const double before = wires.energyBeforeStep() + snareCoupling.potentialEnergyBeforeStep();
+    const double before = wires.energyBeforeStep() + snareCoupling.energyBeforeStep();
     if (on)
-        snareCoupling.layOnHead(carryHead, wires); // wires rest on the head as it moves now
+        snareCoupling.layOnHead(); // wires rest on the head as it moves now
     else
     {
         wires.clear(); // thrown off: out of the model
@@ -172,24 +200,27 @@ void Drum::setSnaresEngaged(bool on)
     engaged = on;
     const double after = on ? wires.energyBeforeStep() : 0.0;
     ledger.injected_J += after - before;
-    ledger.snares_J += after - before;
+    ledger.change(snaresTerm, after - before);
 }
 
 double Drum::step()
 {
-    // Cavity pressure at time n drives both heads (explicit form, see Cavity.h).
-    const double p = air.pressureNow();
-    batterHead.computeFree(p);    // eq. (22) without the contact force
-    carryHead.computeFree(-p);    // eq. (23) without snare and end forces
+    // 1. The components' free updates, with the cavity's pressure at time n on the heads
+    //    (explicit, CavityCoupling.h).
+    batterHead.computeFree(airCoupling.pressureOnBatter()); // eq. (22) without the contact force
+    carryHead.computeFree(airCoupling.pressureOnCarry());   // eq. (23) without snare and end forces
     if (engaged)
-        wires.computeFree();      // eq. (28) without collision and end forces
+        wires.computeFree();                                // eq. (28) without collision and end forces
+    for (auto& ml : mallets)
+        ml.computeFree();                                   // eq. (43) without the contact force
 
-    const auto mallet = malletCoupling.step(batterHead, mallets); // eq. (44)-(45)
+    // 2. The couplings: each solves for its forces and adds them to the free updates.
+    const auto mallet = malletCoupling.step(); // eq. (44)-(45)
     int iterations = mallet.iterations;
     bool fallback = mallet.fallback;
     if (engaged)
     {
-        const auto snare = snareCoupling.step(carryHead, wires); // eq. (48)-(50)
+        const auto snare = snareCoupling.step(); // eq. (48)-(50)
         iterations = std::max(iterations, snare.iterations);
         fallback = fallback || snare.fallback;
         stats.maxSnareIterations = std::max(stats.maxSnareIterations, snare.iterations);
@@ -206,12 +237,12 @@ double Drum::step()
     retrieveRisingMallets();
 
     const double dVNow = air.volumeChangeNow();
-    air.setVolumeNext(batterHead.sweptVolumeNext() - carryHead.sweptVolumeNext());
+    airCoupling.step(); // dV^{n+1}
 
+    // 3. Energy at n + 1/2 and the microphones, then every time level moves on.
     if (trackEnergy)
         updateEnergy();
 
-    // Microphones
     signals.top_m_per_s = velocityAt(batterHead, topMic);
     signals.bottom_m_per_s = velocityAt(carryHead, bottomMic);
     const double d2V = (air.volumeChangeNext() - 2.0 * dVNow + dVPrev) / (k * k);
@@ -262,26 +293,13 @@ void Drum::retrieveRisingMallets()
     for (auto& m : mallets)
         if (m.inPlay() && m.etaNext < -kRetrieveHeight_m && m.etaNow < 0.0 && m.zNext > m.zNow)
         {
-            const double e = m.kineticEnergy() + 0.5 * (m.potential().phi(m.etaNext) + m.potential().phi(m.etaNow));
+            const double e = m.energy() + MalletContact::potentialEnergy(m);
             ledger.injected_J -= e;
             m.park();
         }
 }
 
-void Drum::updateEnergy()
-{
-    ledger.batter_J = batterHead.energy();
-    ledger.carry_J = carryHead.energy();
-    double kinetic = 0.0;
-    for (const auto& m : mallets)
-        if (m.inPlay())
-            kinetic += m.kineticEnergy();
-    ledger.mallets_J = kinetic + MalletContact::potentialEnergy(mallets);
-    ledger.snares_J = engaged ? wires.energy() + snareCoupling.potentialEnergy() : 0.0;
-    ledger.cavity_J = air.energy();
-    ledger.dissipated_J += batterHead.stepLoss() + carryHead.stepLoss()
-                         + (engaged ? wires.stepLoss() + snareCoupling.correctionLoss() : 0.0);
-}
+void Drum::updateEnergy() { record(ledger, energyTerms()); }
 
 void Drum::process(float* out, int n)
 {
@@ -298,7 +316,7 @@ void Drum::reset()
     air.clear();
     for (auto& m : mallets)
         m.park();
-    ledger = {};
+    ledger.clearValues();
     signals = {};
     dVPrev = 0.0;
     samplesRendered = 0;

@@ -1,10 +1,14 @@
 #pragma once
-// The assembled model (eq. 1-50, the air box replaced by the reduced cavity): batter and carry heads,
-// mallets with their contact, snare wires with their collisions and attached ends, and the
-// cavity between the heads. The only class the plugin and the renderer talk to.
+// The assembled model (eq. 1-50, the air box replaced by the reduced cavity), in the paper's
+// terms: components, each with its own state, free update and energy (the batter and carry
+// Membranes, the SnareWires, the Mallets, the Cavity), and couplings, each with its own forces,
+// solve and energy (MalletContact, SnareContact with the attached ends, CavityCoupling).
+// step() runs them in a fixed order; energyTerms() lists which of them each ledger term sums.
+// The only class the plugin and the renderer talk to.
 
 #include "Articulations.h"
 #include "Cavity.h"
+#include "CavityCoupling.h"
 #include "DrumConfig.h"
 #include "DrumSnapshot.h"
 #include "EnergyLedger.h"
@@ -51,6 +55,8 @@ class Drum
 public:
     // Throws std::invalid_argument (readable message) when the config cannot be simulated.
     explicit Drum(const DrumConfig& config);
+    Drum(const Drum&) = delete; // the couplings hold references to the components
+    Drum& operator=(const Drum&) = delete;
 
     const DrumConfig& config() const { return cfg; }
     double sampleRate() const { return cfg.sampleRate_Hz; }
@@ -85,7 +91,8 @@ public:
     // Render n samples of the mix (overwrites out). Real-time safe.
     void process(float* out, int n);
 
-    // Energy bookkeeping, computed every step while enabled (costs about one extra pass).
+    // Energy bookkeeping, computed every step while enabled (costs about one extra pass): one
+    // term per entry of energyTerms() (batter, carry, mallets, snares, cavity), in that order.
     void setEnergyTracking(bool on) { trackEnergy = on; }
     const EnergyLedger& energy() const { return ledger; }
 
@@ -109,6 +116,7 @@ public:
     int numMallets() const { return (int) mallets.size(); }
 
 private:
+    auto energyTerms() const; // the ledger's terms and their owners (Drum.cpp)
     void updateEnergy();
     void retrieveRisingMallets();
     double velocityAt(const Membrane& head, const GridDistribution& point) const;
@@ -117,14 +125,18 @@ private:
 
     DrumConfig cfg;
     double k;
-    Cavity air;
-    Membrane batterHead, carryHead;
-    SnareWires wires;
-    SnareContact snareCoupling;
-    std::vector<Mallet> mallets;
-    MalletContact malletCoupling;
+    // Components and the couplings between them (each coupling after what it couples).
+    Cavity air;                  // component
+    Membrane batterHead, carryHead; // components
+    SnareWires wires;            // component
+    SnareContact snareCoupling;  // coupling: wires - carry head
+    std::vector<Mallet> mallets; // components; never resized after construction
+    MalletContact malletCoupling; // coupling: mallets - batter
+    CavityCoupling airCoupling;  // coupling: heads - cavity
+
     GridDistribution topMic, bottomMic;
     EnergyLedger ledger;
+    int malletsTerm = -1, snaresTerm = -1; // the ledger terms a strike and the snares switch change
     SolverStats stats;
     MicSignals signals;
     bool trackEnergy = false;

@@ -25,8 +25,10 @@ void Mallet::setSpec(const MalletSpec& spec)
     contactLaw.alpha = spec.exponent;
 }
 
-double Mallet::kineticEnergy() const
+double Mallet::energy() const
 {
+    if (! active)
+        return 0.0;
     const double v = (zNext - zNow) / k;
     return 0.5 * M * v * v;
 }
@@ -36,7 +38,7 @@ double Mallet::energyBeforeStep() const
     if (! active)
         return 0.0;
     const double v = (zNow - zPrev) / k;
-    return 0.5 * M * v * v + 0.5 * (contactLaw.phi(etaNow) + contactLaw.phi(etaPrev));
+    return 0.5 * M * v * v;
 }
 
 bool Mallet::aim(double x, double y)

@@ -1,7 +1,7 @@
 #pragma once
 // A mallet: a lumped mass moving along z (eq. 9, 26), z measured from the batter's rest plane.
-// It owns its contact patch g_b on the batter and its kinetic energy; the contact force and
-// potential belong to MalletContact.
+// A component: it owns its state, its free update, its contact patch g_b on the batter and its
+// kinetic energy; the contact force and potential belong to MalletContact.
 
 #include "CircularGrid.h"
 #include "DrumConfig.h"
@@ -25,9 +25,17 @@ public:
     // Penetration eta = h^2 g^T w - z (eq. 27) at n+1, n, n-1.
     double etaNext = 0.0, etaNow = 0.0, etaPrev = 0.0;
 
-    // Kinetic energy (M/2)(dt+ z)^2 at n+1/2, from zNext and zNow (first term of eq. 37).
-    double kineticEnergy() const;
-    // Energy of eq. (37) at n-1/2 (zNow, zPrev, etaNow, etaPrev): what a new strike replaces.
+    // Free update, z* = 2 z^n - z^{n-1} (eq. 43 without the contact force); MalletContact adds the force.
+    void computeFree()
+    {
+        if (active)
+            zNext = 2.0 * zNow - zPrev;
+    }
+
+    // Kinetic energy (M/2)(dt+ z)^2 at n+1/2, from zNext and zNow (first term of eq. 37); 0 when parked.
+    double energy() const;
+    double stepLoss() const { return 0.0; } // lossless
+    // The same at n-1/2 (zNow, zPrev): what a new strike replaces, with MalletContact::potentialEnergyBeforeStep.
     double energyBeforeStep() const;
 
     // Move the contact patch to (x, y) on the head. Real-time safe (no allocation).

@@ -25,22 +25,22 @@ double overlap(const GridDistribution& p, const GridDistribution& q, double h2)
 }
 } // namespace
 
-ContactSolveResult MalletContact::step(Membrane& head, std::span<Mallet> mallets)
+MalletContact::MalletContact(Membrane& batterHead, std::span<Mallet> mallets) : batter(batterHead), malletSet(mallets) {}
+
+ContactSolveResult MalletContact::step()
 {
     ContactSolveResult result;
-    const double h2 = head.grid().spacing() * head.grid().spacing();
-    const double kk = head.timeStep() * head.timeStep();
+    const double h2 = batter.grid().spacing() * batter.grid().spacing();
+    const double kk = batter.timeStep() * batter.timeStep();
 
-    // Free predictions: z* = 2 z^n - z^{n-1} (eq. 43), eta* = h^2 g^T w* - z*.
+    // Free predictions (z* = 2 z^n - z^{n-1} from Mallet::computeFree, eq. 43): eta* = h^2 g^T w* - z*.
     int m = 0;
-    for (int i = 0; i < (int) mallets.size(); ++i)
+    for (int i = 0; i < (int) malletSet.size(); ++i)
     {
-        Mallet& ml = mallets[(size_t) i];
+        Mallet& ml = malletSet[(size_t) i];
         if (! ml.inPlay())
             continue;
-        const double zFree = 2.0 * ml.zNow - ml.zPrev;
-        ml.zNext = zFree;
-        ml.etaNext = head.sampleNext(ml.patch()) - zFree;
+        ml.etaNext = batter.sampleNext(ml.patch()) - ml.zNext;
         // Forces are >= 0 and Gamma >= 0 elementwise, so a mallet that is apart at n-1 and
         // stays apart without forces stays apart with them.
         if ((ml.etaPrev > 0.0 || ml.etaNext > 0.0) && m < maxMallets)
@@ -58,11 +58,11 @@ ContactSolveResult MalletContact::step(Membrane& head, std::span<Mallet> mallets
     f.resize(m);
     for (int i = 0; i < m; ++i)
     {
-        const Mallet& mi = mallets[(size_t) members[i]];
+        const Mallet& mi = malletSet[(size_t) members[i]];
         a(i) = mi.etaPrev;
         b(i) = mi.etaPrev - mi.etaNext;
         for (int j = i; j < m; ++j)
-            gamma(i, j) = gamma(j, i) = head.forceGain() * overlap(mi.patch(), mallets[(size_t) members[j]].patch(), h2);
+            gamma(i, j) = gamma(j, i) = batter.forceGain() * overlap(mi.patch(), malletSet[(size_t) members[j]].patch(), h2);
         gamma(i, i) += kk / mi.mass();
     }
 
@@ -75,29 +75,29 @@ ContactSolveResult MalletContact::step(Membrane& head, std::span<Mallet> mallets
     {
         for (int i = 0; i < m; ++i)
         {
-            const Mallet& mi = mallets[(size_t) members[i]];
+            const Mallet& mi = malletSet[(size_t) members[i]];
             r(i) = solveCollision(mi.potential(), gamma(i, i), a(i), b(i), result.iterations);
         }
     }
-    else if (! solveJoint(mallets, m, result.iterations))
+    else if (! solveJoint(malletSet, m, result.iterations))
     {
         result.fallback = true;
-        solveGaussSeidel(mallets, m, result.iterations);
+        solveGaussSeidel(malletSet, m, result.iterations);
     }
 
     // Forces from the converged r (eq. 27), applied to the head (eq. 26: -g f) and mallet (eq. 43).
     for (int i = 0; i < m; ++i)
     {
-        Mallet& mi = mallets[(size_t) members[i]];
+        Mallet& mi = malletSet[(size_t) members[i]];
         const double force = mi.potential().psi(r(i), a(i));
         f(i) = std::isfinite(force) ? force : 0.0;
-        head.applyForce(mi.patch(), -f(i));
+        batter.applyForce(mi.patch(), -f(i));
         mi.zNext += kk * f(i) / mi.mass();
     }
     for (int i = 0; i < m; ++i)
     {
-        Mallet& mi = mallets[(size_t) members[i]];
-        mi.etaNext = head.sampleNext(mi.patch()) - mi.zNext;
+        Mallet& mi = malletSet[(size_t) members[i]];
+        mi.etaNext = batter.sampleNext(mi.patch()) - mi.zNext;
     }
     return result;
 }
@@ -156,12 +156,21 @@ void MalletContact::solveGaussSeidel(std::span<Mallet> mallets, int m, int& iter
     }
 }
 
-double MalletContact::potentialEnergy(std::span<const Mallet> mallets)
+double MalletContact::potentialEnergy(const Mallet& ml)
+{
+    return ml.inPlay() ? 0.5 * (ml.potential().phi(ml.etaNext) + ml.potential().phi(ml.etaNow)) : 0.0; // eq. (37)
+}
+
+double MalletContact::potentialEnergyBeforeStep(const Mallet& ml)
+{
+    return ml.inPlay() ? 0.5 * (ml.potential().phi(ml.etaNow) + ml.potential().phi(ml.etaPrev)) : 0.0;
+}
+
+double MalletContact::energy() const
 {
     double e = 0.0;
-    for (const auto& ml : mallets)
-        if (ml.inPlay())
-            e += 0.5 * (ml.potential().phi(ml.etaNext) + ml.potential().phi(ml.etaNow)); // eq. (37)
+    for (const auto& ml : malletSet)
+        e += potentialEnergy(ml);
     return e;
 }
 

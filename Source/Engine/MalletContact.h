@@ -3,6 +3,7 @@
 // discretised as eq. (26)-(27) and solved each step from eq. (44)-(45) by Newton-Raphson.
 // Several mallets whose patches overlap are solved together: their eq. (44) becomes a small
 // vector equation r + Gamma psi(r) + b = 0 with Gamma symmetric positive definite.
+// It owns the contact forces and the contact potential mu_t+ Phi_M (second term of eq. 37).
 
 #include "Membrane.h"
 #include "Mallet.h"
@@ -29,13 +30,19 @@ public:
     // Convergence: Newton step below tolerance * (|r| + |a| + |b|), near round-off.
     static constexpr double tolerance = 1.0e-14; // Newton step / (|r| + |a| + |b|)
 
-    // Given the free update w^{n+1} of the head and the mallets at n, n-1: find the contact
-    // forces, add them to the head's w^{n+1} and set each mallet's z^{n+1} and eta^{n+1}.
-    ContactSolveResult step(Membrane& head, std::span<Mallet> mallets);
+    // The batter and the mallets it couples (both must outlive it; the mallets never move).
+    MalletContact(Membrane& batter, std::span<Mallet> mallets);
 
-    // mu_t+ Phi_M at n+1/2 summed over the mallets (second term of eq. 37).
-    static double potentialEnergy(std::span<const Mallet> mallets);
+    // After the free updates of the batter (w*) and the mallets in play (z*): find the contact
+    // forces, add them to the batter's w^{n+1} and the mallets' z^{n+1}, and set each eta^{n+1}.
+    ContactSolveResult step();
 
+    // mu_t+ Phi_M at n+1/2 summed over the mallets in play (second term of eq. 37).
+    double energy() const;
+    double stepLoss() const { return 0.0; } // conservative
+    // One mallet's mu_t+ Phi_M at n+1/2 and at n-1/2 (0 when parked).
+    static double potentialEnergy(const Mallet& mallet);
+    static double potentialEnergyBeforeStep(const Mallet& mallet);
 
 private:
     using Mat = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, maxMallets, maxMallets>;
@@ -47,6 +54,9 @@ private:
     int members[maxMallets] {};   // indices of mallets that may touch this step
     Mat gamma;
     Vec a, b, r, f;
+
+    Membrane& batter;
+    std::span<Mallet> malletSet;
 };
 
 } // namespace snaresim

@@ -3,6 +3,8 @@
 //   rho dtt w = T D w - 2 rho sigma0 dt. w + 2 rho sigma1 dt- D w + forces.
 // Its numerical energy (eq. 35) gains the term -(rho sigma1 k / 2) |grad dt+ w|^2 from the
 // backward-difference loss; with it, h^{n+1/2} - h^{n-1/2} = -k q^n exactly, q^n >= 0.
+// A component: its state, free update (computeFree), energy() and stepLoss(); the couplings'
+// forces come in through applyForce / setNextAt, the cavity's pressure through computeFree.
 
 #include "CircularGrid.h"
 #include "DrumConfig.h"

@@ -14,8 +14,8 @@
 namespace snaresim
 {
 
-SnareContact::SnareContact(const SnareSpec& spec, const SnareWires& wires, const Membrane& carry)
-    : method(spec.scheme), hs(wires.spacing())
+SnareContact::SnareContact(const SnareSpec& spec, SnareWires& wires, Membrane& carry)
+    : method(spec.scheme), hs(wires.spacing()), snares(wires), head(carry)
 {
     setLaw(spec.stiffness, spec.exponent);
     const auto& grid = carry.grid();
@@ -96,9 +96,9 @@ void SnareContact::setLaw(double stiffness, double exponent)
     quarterPower = exponent == 1.5;
 }
 
-SnareSolveResult SnareContact::step(Membrane& carry, SnareWires& wires)
+SnareSolveResult SnareContact::step()
 {
-    return method == CollisionScheme::quadratised ? stepQuadratised(carry, wires) : stepNewton(carry, wires);
+    return method == CollisionScheme::quadratised ? stepQuadratised(head, snares) : stepNewton(head, snares);
 }
 
 void SnareContact::eliminateEnds(int g, const Membrane& carry, const SnareWires& wires, double c, double& W0, double& cc) const
@@ -522,7 +522,7 @@ double SnareContact::solveFallback(int m, double gammaS, double coupling)
     return total(0.5 * (lo + hi));
 }
 
-double SnareContact::potentialEnergy() const
+double SnareContact::energy() const
 {
     if (method == CollisionScheme::quadratised)
         return quadratisedEnergy();
@@ -532,7 +532,7 @@ double SnareContact::potentialEnergy() const
     return 0.5 * hs * e;
 }
 
-double SnareContact::potentialEnergyBeforeStep() const
+double SnareContact::energyBeforeStep() const
 {
     if (method == CollisionScheme::quadratised)
         return quadratisedEnergy(); // psi is stored at the half step: the same value before and after
@@ -556,13 +556,13 @@ void SnareContact::advance()
     std::swap(xiNow, xiNext);
 }
 
-void SnareContact::layOnHead(const Membrane& carry, SnareWires& wires)
+void SnareContact::layOnHead()
 {
-    const auto& now = carry.displacement();
-    const auto& prev = carry.previousDisplacement();
+    const auto& now = head.displacement();
+    const auto& prev = head.previousDisplacement();
     auto lay = [&](int wireNode, int headNode) {
-        wires.uNow[(size_t) wireNode] = wires.uNext[(size_t) wireNode] = now[(size_t) headNode];
-        wires.uPrev[(size_t) wireNode] = prev[(size_t) headNode];
+        snares.uNow[(size_t) wireNode] = snares.uNext[(size_t) wireNode] = now[(size_t) headNode];
+        snares.uPrev[(size_t) wireNode] = prev[(size_t) headNode];
     };
     for (size_t p = 0; p < pointWireNode.size(); ++p)
         lay(pointWireNode[p], pointHeadNode[p]);

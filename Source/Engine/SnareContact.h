@@ -2,6 +2,7 @@
 // Coupling between the snare wires and the carry head: the distributed collision of
 // eq. (15)-(16), (30)-(31), solved each step from eq. (50) by Newton-Raphson, and the
 // attached ends of eq. (17)-(18), (32)-(33) with their forces eliminated as in eq. (48)-(49).
+// It owns those forces and the collision potential (last term of eq. 38).
 //
 // Structure of Gamma: each contact point maps to its nearest carry-head node (G_s is then a
 // scaled selection), so points at different nodes do not interact within a step and Gamma is
@@ -24,7 +25,7 @@
 //   when the prediction is. psi^{n+1/2} stands for the potential of xi^n and xi^{n+1}, so it
 //   runs down to zero on the step after a point leaves the head; psi is evolved, not
 //   recomputed, so a little can be left then. Where a point is apart at n and n+1 it is reset
-//   to zero and the energy removed, h_s psi^2 / 2 >= 0, is booked as a loss (correctionLoss()),
+//   to zero and the energy removed, h_s psi^2 / 2 >= 0, is booked as a loss (stepLoss()),
 //   so the scheme stays passive and the ledger balances.
 
 #include "Membrane.h"
@@ -52,7 +53,8 @@ public:
     static constexpr double tolerance = 1.0e-14; // Newton step / (|r| + |a| + |b|)
     static constexpr double groupTolerance = 1.0e-12; // on the total force of a node group
 
-    SnareContact(const SnareSpec& spec, const SnareWires& wires, const Membrane& carry);
+    // The wires and the carry head it couples (both must outlive it).
+    SnareContact(const SnareSpec& spec, SnareWires& wires, Membrane& carry);
 
     CollisionScheme scheme() const { return method; }
 
@@ -60,14 +62,16 @@ public:
 
     // After the free updates of the carry head and the wires: solve the collisions and the
     // attachments, and write w_c^{n+1} at the touched nodes and u^{n+1} of the wires.
-    SnareSolveResult step(Membrane& carry, SnareWires& wires);
+    SnareSolveResult step();
 
-    // h_s sum mu_t+ Phi_s at n+1/2 (last term of eq. 38).
-    double potentialEnergy() const;
-    double potentialEnergyBeforeStep() const; // at n-1/2
+    // The collision potential h_s sum mu_t+ Phi_s at n+1/2 (last term of eq. 38; quadratised:
+    // h_s sum psi^2 / 2). The attached ends store none.
+    double energy() const;
+    double energyBeforeStep() const; // at n-1/2
+    // Energy the quadratised scheme removed in the last step by resetting psi of separated points
+    // (0 with Newton): its only loss.
+    double stepLoss() const { return lastCorrection; }
     double maxPenetration() const; // largest xi^{n+1} (m), 0 when apart
-    // Energy the quadratised scheme removed in the last step by resetting psi of separated points.
-    double correctionLoss() const { return lastCorrection; }
     double quadratisedEnergy() const; // h_s sum psi^2 / 2
     int numPoints() const { return (int) pointWireNode.size(); }
     // xi = u - w_c per contact point at the latest completed step (after Drum::step), in the
@@ -79,7 +83,7 @@ public:
     void advance();
     // Lay the wires on the carry head as it is at n and n-1 (snares engaged): every node
     // moves with the head node it maps to, gaps are zero.
-    void layOnHead(const Membrane& carry, SnareWires& wires);
+    void layOnHead();
     void clear();
 
 private:
@@ -138,6 +142,9 @@ private:
     // quadratised: the groups solved this step (slots) and their points in one flat list
     std::vector<int> solveGroups, slotEnd, flatPoint, flatSlot;
     std::vector<double> slotW0, slotCc, slotS, slotW, gq, alphaQ, betaQ;
+
+    SnareWires& snares;
+    Membrane& head; // the carry head
 };
 
 } // namespace snaresim

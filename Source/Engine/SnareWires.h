@@ -7,6 +7,7 @@
 // Energy (eq. 38 without the collision potential, which SnareContact owns):
 //   h_s sum_l w_l rho/2 (dt+ u_l)^2 + T/(2 h_s) sum_seg du^n du^{n+1} - rho sigma1/(2 k h_s) sum_seg (d(u^{n+1}-u^n))^2,
 // with trapezoid weights w_0 = w_M = 1/2; h^{n+1/2} - h^{n-1/2} = -k q^n exactly, q^n >= 0.
+// A component: its state, free update (computeFree), energy() and stepLoss().
 
 #include "DrumConfig.h"
 

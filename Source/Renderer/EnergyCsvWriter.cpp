@@ -21,7 +21,17 @@ void appendNumber(std::string& line, double value)
 
 } // namespace
 
-EnergyCsvWriter::EnergyCsvWriter(const AtomicFile& target, double sampleRate_Hz)
+std::string EnergyCsvWriter::header(const EnergyLedger& layout)
+{
+    std::string text = "time_s";
+    for (const auto& term : layout.terms())
+        (text += ',') += EnergyLedger::columnName(term.name);
+    for (const char* column : { "total", "dissipated", "injected", "balance" })
+        (text += ',') += EnergyLedger::columnName(column);
+    return text;
+}
+
+EnergyCsvWriter::EnergyCsvWriter(const AtomicFile& target, double sampleRate_Hz, const EnergyLedger& layout)
     : file(target), sampleRate(sampleRate_Hz)
 {
     const juce::File path(juce::String(std::filesystem::absolute(file.temporary()).string()));
@@ -31,7 +41,7 @@ EnergyCsvWriter::EnergyCsvWriter(const AtomicFile& target, double sampleRate_Hz)
     stream->setPosition(0);
     stream->truncate();
 
-    put(std::string(header) + "\n");
+    put(header(layout) + "\n");
 }
 
 EnergyCsvWriter::~EnergyCsvWriter() = default;
@@ -57,8 +67,12 @@ void EnergyCsvWriter::write(std::int64_t firstSample, std::span<const EnergyLedg
     {
         const auto& e = rows[i];
         appendNumber(line, (double) (firstSample + (std::int64_t) i) / sampleRate);
-        for (const double value : { e.batter_J, e.carry_J, e.mallets_J, e.snares_J, e.cavity_J, e.total(),
-                                    e.dissipated_J, e.injected_J, e.balance() })
+        for (const auto& term : e.terms())
+        {
+            line += ',';
+            appendNumber(line, term.value_J);
+        }
+        for (const double value : { e.total(), e.dissipated_J, e.injected_J, e.balance() })
         {
             line += ',';
             appendNumber(line, value);

@@ -19,21 +19,18 @@ constexpr int kDecades = EnergyPlot::componentDecades; // shown by the component
 
 struct SeriesStyle
 {
-    const char* name;
     juce::Colour colour;
     float thickness;
 };
 
-// Index = EnergyPlot's Series; balance is drawn in the left panel.
-const SeriesStyle kStyles[] = {
-    { "balance", juce::Colour(0xff1f4e9c), 1.5f },
-    { "batter", juce::Colour(0xff1f77b4), 1.6f },
-    { "carry", juce::Colour(0xffff7f0e), 1.6f },
-    { "mallets", juce::Colour(0xff2ca02c), 1.6f },
-    { "snares", juce::Colour(0xffd62728), 1.6f },
-    { "cavity", juce::Colour(0xff9467bd), 1.6f },
-    { "total", juce::Colour(0xff000000), 2.2f },
-};
+// The balance (left panel) and the total; the ledger's terms take the palette's colours in order.
+const SeriesStyle kBalanceStyle { juce::Colour(0xff1f4e9c), 1.5f };
+const SeriesStyle kTotalStyle { juce::Colour(0xff000000), 2.2f };
+const juce::Colour kTermColours[] = { juce::Colour(0xff1f77b4), juce::Colour(0xffff7f0e), juce::Colour(0xff2ca02c),
+                                      juce::Colour(0xffd62728), juce::Colour(0xff9467bd), juce::Colour(0xff8c564b),
+                                      juce::Colour(0xffe377c2), juce::Colour(0xff7f7f7f), juce::Colour(0xffbcbd22),
+                                      juce::Colour(0xff17becf) };
+constexpr float kTermThickness = 1.6f;
 
 std::string formatted(const char* format, double value)
 {
@@ -44,21 +41,28 @@ std::string formatted(const char* format, double value)
 
 } // namespace
 
-EnergyPlot::EnergyPlot(std::int64_t numSamples, double sampleRate_Hz, std::optional<std::int64_t> firstStrikeSample)
-    : samples(std::max<std::int64_t>(numSamples, 1)), sampleRate(sampleRate_Hz), firstStrike(firstStrikeSample),
-      buckets((std::size_t) std::min(samples, kMaxBuckets))
+EnergyPlot::EnergyPlot(std::int64_t numSamples, double sampleRate_Hz, std::optional<std::int64_t> firstStrikeSample,
+                       const EnergyLedger& layout)
+    : samples(std::max<std::int64_t>(numSamples, 1)), sampleRate(sampleRate_Hz), firstStrike(firstStrikeSample)
 {
+    for (const auto& term : layout.terms())
+        termNames.push_back(term.name);
+    numBuckets = (std::size_t) std::min(samples, kMaxBuckets);
+    buckets.resize(numBuckets * (std::size_t) numSeries());
+    values.resize((std::size_t) numSeries());
 }
 
 void EnergyPlot::add(std::int64_t firstSample, std::span<const EnergyLedger> rows)
 {
-    const auto numBuckets = (std::int64_t) buckets.size();
+    const auto bucketCount = (std::int64_t) numBuckets;
     for (std::size_t i = 0; i < rows.size(); ++i)
     {
         const auto n = firstSample + (std::int64_t) i;
         const auto& e = rows[i];
-        const std::array<double, numSeries> values { e.balance(), e.batter_J, e.carry_J, e.mallets_J,
-                                                     e.snares_J,  e.cavity_J, e.total() };
+        values[balance] = e.balance();
+        for (int t = 0; t < (int) termNames.size(); ++t)
+            values[(std::size_t) (firstTerm + t)] = e[t];
+        values[(std::size_t) total()] = e.total();
         if (! std::all_of(values.begin(), values.end(), [](double v) { return std::isfinite(v); }))
         {
             ++nonfiniteRows;
@@ -66,18 +70,18 @@ void EnergyPlot::add(std::int64_t firstSample, std::span<const EnergyLedger> row
         }
 
         // h^0: the total right after the first strike (its first row holding energy).
-        if (! haveReference && firstStrike && n >= *firstStrike && values[total] > 0.0)
+        if (! haveReference && firstStrike && n >= *firstStrike && values[(std::size_t) total()] > 0.0)
         {
             haveReference = true;
-            referenceTotal = values[total];
+            referenceTotal = values[(std::size_t) total()];
             referenceBalance = values[balance];
             referenceSample = n;
         }
 
-        auto& bucket = buckets[(std::size_t) std::clamp<std::int64_t>(n * numBuckets / samples, 0, numBuckets - 1)];
-        for (int s = 0; s < numSeries; ++s)
+        const auto index = (std::size_t) std::clamp<std::int64_t>(n * bucketCount / samples, 0, bucketCount - 1);
+        for (int s = 0; s < numSeries(); ++s)
         {
-            auto& b = bucket[(std::size_t) s];
+            auto& b = bucketAt(index, s);
             const double v = values[(std::size_t) s];
             if (! b.filled)
             {
@@ -116,9 +120,9 @@ void EnergyPlot::drawBalancePanel(juce::Graphics& g, juce::Rectangle<float> area
     std::vector<juce::Point<double>> points;
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
     if (haveReference)
-        for (const auto& bucket : buckets)
+        for (std::size_t index = 0; index < numBuckets; ++index)
         {
-            const auto& b = bucket[balance];
+            const auto& b = bucketAt(index, balance);
             if (! b.filled)
                 continue;
             auto variation = [&](double h) { return (h - referenceBalance) / referenceTotal; };
@@ -179,8 +183,8 @@ void EnergyPlot::drawBalancePanel(juce::Graphics& g, juce::Rectangle<float> area
     }
     if (points.size() == 1)
         path.lineTo(path.getCurrentPosition().translated(1.0f, 0.0f));
-    g.setColour(kStyles[balance].colour);
-    g.strokePath(path, juce::PathStrokeType(kStyles[balance].thickness));
+    g.setColour(kBalanceStyle.colour);
+    g.strokePath(path, juce::PathStrokeType(kBalanceStyle.thickness));
 
     // What h^0 is.
     g.setFont(plot::font(15.0f));
@@ -194,14 +198,19 @@ void EnergyPlot::drawBalancePanel(juce::Graphics& g, juce::Rectangle<float> area
 void EnergyPlot::drawComponentPanel(juce::Graphics& g, juce::Rectangle<float> area, juce::Rectangle<float> legend) const
 {
     const double durationMs = (double) samples / sampleRate * 1000.0;
+    auto styleOf = [&](int s) {
+        if (s == total())
+            return kTotalStyle;
+        return SeriesStyle { kTermColours[(std::size_t) (s - firstTerm) % std::size(kTermColours)], kTermThickness };
+    };
 
     // Logarithmic, kDecades below the decade above the largest energy: the strike's energy
     // (mostly the mallet's, which leaves with it) and the drum's ringing, orders of magnitude
     // smaller, both stay readable. Zero or negative values run off the bottom.
     double largest = 0.0;
-    for (const auto& bucket : buckets)
-        for (int s = batter; s <= total; ++s)
-            if (const auto& b = bucket[(std::size_t) s]; b.filled)
+    for (std::size_t index = 0; index < numBuckets; ++index)
+        for (int s = firstTerm; s <= total(); ++s)
+            if (const auto& b = bucketAt(index, s); b.filled)
                 largest = std::max(largest, b.max);
     const double hi = componentTop(largest);
     const double lo = hi * std::pow(10.0, -kDecades);
@@ -229,15 +238,15 @@ void EnergyPlot::drawComponentPanel(juce::Graphics& g, juce::Rectangle<float> ar
     {
         juce::Graphics::ScopedSaveState state(g);
         g.reduceClipRegion(area.toNearestInt());
-        for (int s = batter; s <= total; ++s)
+        for (int s = firstTerm; s <= total(); ++s)
         {
             // One point per pixel column: the largest value in it (the upper envelope, so
             // that an energy swinging through zero, such as the cavity's, reads as a line).
             const int columns = (int) area.getWidth();
             std::vector<double> peak((std::size_t) columns, -std::numeric_limits<double>::infinity());
-            for (const auto& bucket : buckets)
+            for (std::size_t index = 0; index < numBuckets; ++index)
             {
-                const auto& b = bucket[(std::size_t) s];
+                const auto& b = bucketAt(index, s);
                 if (! b.filled)
                     continue;
                 const int column = std::clamp((int) ((double) b.maxAt / (double) samples * columns), 0, columns - 1);
@@ -260,30 +269,33 @@ void EnergyPlot::drawComponentPanel(juce::Graphics& g, juce::Rectangle<float> ar
             }
             if (! started)
                 continue;
-            g.setColour(kStyles[s].colour);
-            g.strokePath(path, juce::PathStrokeType(kStyles[s].thickness));
+            const auto style = styleOf(s);
+            g.setColour(style.colour);
+            g.strokePath(path, juce::PathStrokeType(style.thickness));
         }
     }
 
     // The legend, beside the panel.
     const float rowHeight = 24.0f;
-    auto box = legend.withHeight(rowHeight * (float) (total - batter + 1) + 12.0f);
+    auto box = legend.withHeight(rowHeight * (float) (total() - firstTerm + 1) + 12.0f);
     g.setColour(juce::Colours::white);
     g.fillRect(box);
     g.setColour(juce::Colour(0xffb0b0b0));
     g.drawRect(box, 1.0f);
     g.setFont(plot::font(15.0f));
     float y = box.getY() + 6.0f + rowHeight / 2.0f;
-    for (int s = batter; s <= total; ++s, y += rowHeight)
+    for (int s = firstTerm; s <= total(); ++s, y += rowHeight)
     {
-        // A component that never held energy (snares off, no cavity) stays off the scale.
+        // A term that never held energy (snares off, no cavity) stays off the scale.
         bool everPositive = false;
-        for (const auto& bucket : buckets)
-            everPositive = everPositive || (bucket[(std::size_t) s].filled && bucket[(std::size_t) s].max > 0.0);
-        const auto name = std::string(kStyles[s].name) + (everPositive ? "" : " = 0");
+        for (std::size_t index = 0; index < numBuckets; ++index)
+            everPositive = everPositive || (bucketAt(index, s).filled && bucketAt(index, s).max > 0.0);
+        const auto name = (s == total() ? std::string("total") : std::string(termNames[(std::size_t) (s - firstTerm)]))
+                        + (everPositive ? "" : " = 0");
 
-        g.setColour(kStyles[s].colour);
-        g.drawLine(box.getX() + 10.0f, y, box.getX() + 40.0f, y, kStyles[s].thickness + 0.8f);
+        const auto style = styleOf(s);
+        g.setColour(style.colour);
+        g.drawLine(box.getX() + 10.0f, y, box.getX() + 40.0f, y, style.thickness + 0.8f);
         g.setColour(juce::Colour(0xff202020));
         g.drawText(name, juce::Rectangle<float>(box.getX() + 48.0f, y - 10.0f, box.getWidth() - 52.0f, 20.0f),
                    juce::Justification::centredLeft, false);

@@ -4,7 +4,8 @@
 //   left:  (h^n - h^0) / h^0, h^n = the energy balance (EnergyLedger::balance(), so that
 //          strikes and retrieved mallets do not show as jumps) and h^0 = the total energy
 //          right after the first strike (the deviation is taken from the balance there);
-//   right: the energy of each component (batter, carry, mallets, snares, cavity) and the total.
+//   right: each term of the ledger (for the drum: batter, carry, mallets, snares, cavity) and
+//          the total, the legend naming them as the ledger does.
 // Fed with the ledger of every sample while rendering; keeps the minimum and maximum of
 // each series per time bucket (at most a few thousand), so any render length fits.
 
@@ -18,6 +19,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -31,9 +33,11 @@ public:
     static constexpr int height = 600;
 
     // firstStrikeSample: the sample of the first strike played (none: no reference h^0).
-    EnergyPlot(std::int64_t numSamples, double sampleRate_Hz, std::optional<std::int64_t> firstStrikeSample);
+    // layout: a ledger with the terms the rows will have (the drum's energy()).
+    EnergyPlot(std::int64_t numSamples, double sampleRate_Hz, std::optional<std::int64_t> firstStrikeSample,
+               const EnergyLedger& layout);
 
-    // rows[i] is the ledger after sample firstSample + i.
+    // rows[i] is the ledger after sample firstSample + i (with the terms of the layout).
     void add(std::int64_t firstSample, std::span<const EnergyLedger> rows);
 
     juce::Image draw() const;
@@ -63,17 +67,11 @@ public:
     }
 
 private:
-    enum Series
-    {
-        balance,
-        batter,
-        carry,
-        mallets,
-        snares,
-        cavity,
-        total,
-        numSeries
-    };
+    // Series: the balance (left panel), then the ledger's terms, then the total.
+    static constexpr int balance = 0, firstTerm = 1;
+    int lastTerm() const { return (int) termNames.size(); }
+    int total() const { return lastTerm() + 1; }
+    int numSeries() const { return lastTerm() + 2; }
 
     struct Bucket
     {
@@ -85,10 +83,19 @@ private:
     void drawBalancePanel(juce::Graphics& g, juce::Rectangle<float> area) const;
     void drawComponentPanel(juce::Graphics& g, juce::Rectangle<float> area, juce::Rectangle<float> legend) const;
 
+    Bucket& bucketAt(std::size_t index, int series) { return buckets[index * (std::size_t) numSeries() + (std::size_t) series]; }
+    const Bucket& bucketAt(std::size_t index, int series) const
+    {
+        return buckets[index * (std::size_t) numSeries() + (std::size_t) series];
+    }
+
     std::int64_t samples;
     double sampleRate;
     std::optional<std::int64_t> firstStrike;
-    std::vector<std::array<Bucket, numSeries>> buckets;
+    std::vector<std::string_view> termNames;
+    std::size_t numBuckets;
+    std::vector<Bucket> buckets; // numBuckets x numSeries()
+    std::vector<double> values;  // one row's series (scratch)
 
     bool haveReference = false;
     double referenceTotal = 0.0;   // h^0

@@ -136,7 +136,7 @@ int render(const RenderJob& job)
     if (job.energyCsv)
     {
         csvFile.emplace(*job.energyCsv);
-        csv = std::make_unique<EnergyCsvWriter>(*csvFile, plan.sampleRate_Hz);
+        csv = std::make_unique<EnergyCsvWriter>(*csvFile, plan.sampleRate_Hz, drum->energy());
     }
 
     std::optional<AtomicFile> energyPlotFile;
@@ -146,7 +146,7 @@ int render(const RenderJob& job)
         energyPlotFile.emplace(*job.energyPlot);
         energyPlot = std::make_unique<EnergyPlot>(
             plan.numSamples, plan.sampleRate_Hz,
-            plan.strikes.empty() ? std::nullopt : std::optional(plan.strikes.front().sample));
+            plan.strikes.empty() ? std::nullopt : std::optional(plan.strikes.front().sample), drum->energy());
     }
 
     std::optional<AtomicFile> spectrogramFile;

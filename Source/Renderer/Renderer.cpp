@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -30,6 +31,7 @@ struct Statistics
     double maxDeviation = 0.0;
     double maxTotal = 0.0;
     bool energyNonfinite = false;
+    std::vector<std::pair<std::string, double>> energyMax; // per term, then the total
 
     void addAudio(std::span<const float> block)
     {
@@ -51,6 +53,20 @@ struct Statistics
     {
         for (const auto& e : rows)
         {
+            if (energyMax.empty())
+            {
+                for (const auto& term : e.terms())
+                    energyMax.emplace_back(EnergyLedger::columnName(term.name), std::numeric_limits<double>::quiet_NaN());
+                energyMax.emplace_back(EnergyLedger::columnName("total"), std::numeric_limits<double>::quiet_NaN());
+            }
+            for (int t = 0; t <= e.size(); ++t)
+            {
+                const double v = t < e.size() ? e[t] : e.total();
+                auto& largest = energyMax[(std::size_t) t].second;
+                if (std::isfinite(v) && ! (v <= largest))
+                    largest = v;
+            }
+
             const double balance = e.balance();
             const double total = e.total();
             if (! std::isfinite(balance) || ! std::isfinite(total))
@@ -176,7 +192,10 @@ RenderStats renderDrum(std::unique_ptr<Drum> drumToPlay, const ParameterSet& par
     stats.nonfiniteResets = player.nonFiniteResets();
     stats.strikes = (int) nextStrike;
     if (trackEnergy)
+    {
         stats.energyRelativeDriftMax = statistics.relativeDrift();
+        stats.energyMax_J = statistics.energyMax;
+    }
     if (const auto* drum = player.drum())
         stats.solver = drum->solverStats();
     return stats;

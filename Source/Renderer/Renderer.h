@@ -15,6 +15,9 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace snaresim::render
 {
@@ -50,6 +53,9 @@ struct RenderStats
     // With energy tracking: max_n |balance_n - balance_0| / max_n total_n (0 when the drum
     // never held energy); NaN when the ledger went non-finite.
     std::optional<double> energyRelativeDriftMax;
+    // With energy tracking: the largest finite value of each ledger term and of the total, under
+    // its CSV column name ("batter_J", ..., "total_J"), in the CSV's order (NaN: never finite).
+    std::vector<std::pair<std::string, double>> energyMax_J;
     SolverStats solver;
     std::optional<BenchFigures> bench;  // --bench only
 };

@@ -77,6 +77,13 @@ std::string formatJson(const RenderReport& r)
     object->setProperty("energy_tracking", r.stats.energyRelativeDriftMax.has_value());
     if (r.stats.energyRelativeDriftMax)
         object->setProperty("energy_relative_drift_max", *r.stats.energyRelativeDriftMax);
+    if (! r.stats.energyMax_J.empty())
+    {
+        auto* maxima = new juce::DynamicObject(); // the ledger's terms and the total, as the CSV's columns
+        for (const auto& [column, value] : r.stats.energyMax_J)
+            maxima->setProperty(juce::Identifier(juce::String(column)), value);
+        object->setProperty("energy_max_J", juce::var(maxima));
+    }
     object->setProperty("solver_max_iterations", r.stats.solver.maxIterations);
     object->setProperty("snare_max_iterations", r.stats.solver.maxSnareIterations);
     object->setProperty("snare_max_penetration_m", r.stats.solver.maxSnarePenetration_m);

@@ -1,5 +1,5 @@
 // Energy checks of the scheme (eq. 34-38): conservation to round-off when
-// lossless, monotone decay with losses.
+// lossless, monotone decay with losses; the ledger's terms and what moves each of them.
 
 #include "TestDrums.h"
 
@@ -7,6 +7,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <string>
+#include <vector>
 
 using namespace snaresim;
 
@@ -31,7 +34,7 @@ TEST_CASE("lossless head and mallet conserve the discrete energy to round-off", 
         if (! retrieved)
             maxDrift = std::max(maxDrift, std::abs(drum.energy().total() - e0) / e0);
         maxDrift = std::max(maxDrift, std::abs(drum.energy().balance() - b0) / e0);
-        peakHead = std::max(peakHead, drum.energy().batter_J);
+        peakHead = std::max(peakHead, drum.energy().value("batter"));
     }
     INFO("max relative energy variation " << maxDrift);
     CHECK(maxDrift < 1e-12);
@@ -74,7 +77,7 @@ TEST_CASE("with losses the energy never rises and energy + losses is constant", 
         drum.step();
         const double e = drum.energy().total();
         worstRise = std::max(worstRise, (e - previous) / e0);
-        peakHead = std::max(peakHead, drum.energy().batter_J);
+        peakHead = std::max(peakHead, drum.energy().value("batter"));
         worstBalance = std::max(worstBalance, std::abs(drum.energy().balance() - b0) / e0);
         previous = e;
     }
@@ -82,5 +85,128 @@ TEST_CASE("with losses the energy never rises and energy + losses is constant", 
     CHECK(worstRise < 1e-14);
     CHECK(worstBalance < 1e-12);
     // T60 = 1 s: after 0.45 s the head keeps well under a tenth of its peak energy.
-    CHECK(drum.energy().batter_J < 0.1 * peakHead);
+    CHECK(drum.energy().value("batter") < 0.1 * peakHead);
+}
+
+namespace
+{
+std::vector<std::string> termNames(const EnergyLedger& e)
+{
+    std::vector<std::string> names;
+    for (const auto& t : e.terms())
+        names.emplace_back(t.name);
+    return names;
+}
+
+// Every term's largest |value| over `steps` steps after a 5 m/s strike (with tracking on), each
+// step also checking that total() adds the terms in their order and balance() follows from it.
+std::map<std::string, double> largestTerms(Drum& drum, int steps)
+{
+    drum.setEnergyTracking(true);
+    drum.strike(5.0, 0.3, 0.1);
+    std::map<std::string, double> largest;
+    const auto& e = drum.energy();
+    for (const auto& t : e.terms())
+        largest[std::string(t.name)] = std::abs(t.value_J);
+    for (int n = 0; n < steps; ++n)
+    {
+        drum.step();
+        double sum = e[0];
+        for (int t = 1; t < e.size(); ++t)
+            sum += e[t];
+        REQUIRE(e.total() == sum);
+        REQUIRE(e.balance() == e.total() + e.dissipated_J - e.injected_J);
+        for (const auto& t : e.terms())
+            largest[std::string(t.name)] = std::max(largest[std::string(t.name)], std::abs(t.value_J));
+    }
+    return largest;
+}
+} // namespace
+
+TEST_CASE("the ledger holds the drum's terms in eq. (34)'s order, and reset keeps them with their values cleared", "[energy]")
+{
+    Drum drum(test::wholeDrum());
+    const std::vector<std::string> expected { "batter", "carry", "mallets", "snares", "cavity" };
+    CHECK(termNames(drum.energy()) == expected);
+    CHECK(EnergyLedger::columnName("batter") == "batter_J");
+
+    const auto largest = largestTerms(drum, 2000);
+    for (const auto& name : expected)
+    {
+        INFO("term " << name);
+        CHECK(largest.at(name) > 0.0); // the whole drum: every term holds energy after a strike
+    }
+    CHECK(drum.energy().dissipated_J > 0.0);
+    CHECK(drum.energy().injected_J > 0.0);
+
+    drum.reset();
+    CHECK(termNames(drum.energy()) == expected);
+    for (const auto& t : drum.energy().terms())
+        CHECK(t.value_J == 0.0);
+    CHECK(drum.energy().dissipated_J == 0.0);
+    CHECK(drum.energy().injected_J == 0.0);
+    CHECK(drum.energy().total() == 0.0);
+    CHECK_THROWS_AS(drum.energy().value("airbox"), std::out_of_range);
+}
+
+TEST_CASE("each ledger term moves only when its component is in play", "[energy]")
+{
+    SECTION("snares off, no air: the batter and the mallet, nothing else")
+    {
+        Drum drum(test::losslessHead());
+        const auto largest = largestTerms(drum, 4000);
+        CHECK(largest.at("batter") > 0.05 * 0.35); // the contact moved energy into the head
+        CHECK(largest.at("mallets") > 0.0);
+        CHECK(largest.at("carry") == 0.0);         // no air: nothing reaches the carry head
+        CHECK(largest.at("snares") == 0.0);
+        CHECK(largest.at("cavity") == 0.0);
+        CHECK(drum.energy().dissipated_J == 0.0);   // lossless
+    }
+    SECTION("no air, snares on: the wires rest on a carry head nothing moves")
+    {
+        DrumConfig cfg = test::losslessHead();
+        cfg.snares.engaged = true;
+        Drum drum(cfg);
+        const auto largest = largestTerms(drum, 4000);
+        CHECK(largest.at("batter") > 0.0);
+        CHECK(largest.at("mallets") > 0.0);
+        CHECK(largest.at("carry") == 0.0);
+        CHECK(largest.at("snares") == 0.0);
+        CHECK(largest.at("cavity") == 0.0);
+    }
+    SECTION("the cavity, snares off: the air carries the batter's motion to the carry head")
+    {
+        DrumConfig cfg = test::losslessHead();
+        cfg.cavity.model = AirModel::cavity;
+        Drum drum(cfg);
+        const auto largest = largestTerms(drum, 4000);
+        CHECK(largest.at("batter") > 0.0);
+        CHECK(largest.at("cavity") > 0.0);
+        CHECK(largest.at("carry") > 0.0);
+        CHECK(largest.at("snares") == 0.0);
+    }
+    SECTION("the snares thrown off and put back: their term drops to exactly 0 and what they held leaves through injected_J")
+    {
+        Drum drum(test::wholeDrum());
+        largestTerms(drum, 400);
+        const auto& e = drum.energy();
+        const double held = e.value("snares"), injected = e.injected_J, balance = e.balance();
+        REQUIRE(held != 0.0);
+        drum.setSnaresEngaged(false);
+        CHECK(e.value("snares") == 0.0);
+        const double scale = injected; // the strike's energy (balance itself is about 0)
+        CHECK(e.injected_J == Approx(injected - held).margin(1e-12 * scale));
+        CHECK(e.balance() == Approx(balance).margin(1e-12 * scale));
+        for (int n = 0; n < 200; ++n)
+        {
+            drum.step();
+            REQUIRE(e.value("snares") == 0.0);
+        }
+        const double offBalance = e.balance();
+        drum.setSnaresEngaged(true); // laid on the head as it moves: they bring the energy of that motion
+        CHECK(e.value("snares") != 0.0);
+        CHECK(e.balance() == Approx(offBalance).margin(1e-12 * scale));
+        drum.step();
+        CHECK(e.value("snares") != 0.0);
+    }
 }

@@ -274,21 +274,22 @@ TEST_CASE("plots: --energy-plot and --spectrogram write PNG images", "[renderer]
         // The plotted curves against the ledger that drew them (the CSV holds the same rows).
         const auto rows = csvRows(csv);
         REQUIRE(rows.size() == 14400);
+        const auto columns = energyColumns(lines(readText(csv)).front());
         const auto image = loadImage(energy);
         REQUIRE(image.isValid());
         const double rate = 48000.0, durationMs = 300.0;
         auto xOf = [&](juce::Rectangle<float> area, double ms) { return area.getX() + ms / durationMs * area.getWidth(); };
 
-        // Left panel: (h^n - h^0) / h^0 of the balance (column 9), h^0 the total (column 6) of the
-        // strike's first row (the strike is at sample 0). Its highest and lowest points lie
-        // where the axis range puts them: 8 % of the span inside the top and the bottom.
-        const double h0 = rows.front()[6], balance0 = rows.front()[9];
+        // Left panel: (h^n - h^0) / h^0 of the balance, h^0 the total of the strike's first row
+        // (the strike is at sample 0). Its highest and lowest points lie where the axis range
+        // puts them: 8 % of the span inside the top and the bottom.
+        const double h0 = rows.front()[columns.total], balance0 = rows.front()[columns.balance];
         REQUIRE(h0 > 0.0);
         double lo = 0.0, hi = 0.0;
         std::size_t loAt = 0, hiAt = 0;
         for (std::size_t n = 0; n < rows.size(); ++n)
         {
-            const double v = (rows[n][9] - balance0) / h0;
+            const double v = (rows[n][columns.balance] - balance0) / h0;
             if (v < lo)
                 lo = v, loAt = n;
             if (v > hi)
@@ -319,10 +320,13 @@ TEST_CASE("plots: --energy-plot and --spectrogram write PNG images", "[renderer]
         const double v = snaresim::strikeSpeedFromVelocity(100, params.get(snaresim::ParamId::strikeSpeedMax));
         const double strikeEnergy = 0.5 * params.get(snaresim::ParamId::malletMass) * v * v;
         CHECK(h0 == Approx(strikeEnergy).epsilon(1e-5)); // less the first step's losses
-        double largest = 0.0;
+        double largest = 0.0; // over the ledger's terms and the total, as the panel plots them
         for (const auto& row : rows)
-            for (int c = 1; c <= 6; ++c)
-                largest = std::max(largest, row[(std::size_t) c]);
+        {
+            for (const auto c : columns.terms)
+                largest = std::max(largest, row[c]);
+            largest = std::max(largest, row[columns.total]);
+        }
         CHECK(largest == h0);
         const double axisTop = snaresim::render::EnergyPlot::componentTop(largest);
         CHECK(axisTop == 1.0);
@@ -331,7 +335,7 @@ TEST_CASE("plots: --energy-plot and --spectrogram write PNG images", "[renderer]
         const double yTotal = componentArea.getBottom()
                             - std::log10(strikeEnergy / axisBottom) / std::log10(axisTop / axisBottom) * componentArea.getHeight();
         std::size_t kept = 0; // the last row the total holds the strike's energy (within 1 %)
-        while (kept + 1 < rows.size() && rows[kept + 1][6] > 0.99 * h0)
+        while (kept + 1 < rows.size() && rows[kept + 1][columns.total] > 0.99 * h0)
             ++kept;
         const auto totalTop = extremePixel(image, componentArea, isBlack, true);
         REQUIRE(totalTop.has_value());

@@ -14,6 +14,9 @@
 
 #include <charconv>
 #include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
 
 using namespace rendertest;
 
@@ -212,9 +215,10 @@ TEST_CASE("lossless: --lossless --json reports an energy balance drift below 1e-
     CHECK(drift < 1.0e-10);
 
     // It is max_n |balance_n - balance_0| / max_n total_n of the ledger, which the CSV holds
-    // (total in column 6, balance in column 9, numbers written to round-trip exactly).
+    // (numbers written to round-trip exactly).
     const auto rows = lines(readText(csv));
     REQUIRE(rows.size() == 13231); // the header and 0.3 s at 44.1 kHz
+    const auto columns = energyColumns(rows.front());
     double balance0 = 0.0, deviation = 0.0, largest = 0.0;
     for (std::size_t i = 1; i < rows.size(); ++i)
     {
@@ -229,11 +233,11 @@ TEST_CASE("lossless: --lossless --json reports an energy balance drift below 1e-
             p = next + 1;
         }
         INFO("row " << i << ": " << rows[i]);
-        REQUIRE(fields.size() == 10);
+        REQUIRE(fields.size() == columns.names.size());
         if (i == 1)
-            balance0 = fields[9];
-        deviation = std::max(deviation, std::abs(fields[9] - balance0));
-        largest = std::max(largest, std::abs(fields[6]));
+            balance0 = fields[columns.balance];
+        deviation = std::max(deviation, std::abs(fields[columns.balance] - balance0));
+        largest = std::max(largest, std::abs(fields[columns.total]));
     }
     REQUIRE(largest > 0.0);
     INFO("from the CSV: " << deviation / largest);
@@ -319,9 +323,10 @@ TEST_CASE("energy csv: --energy-csv writes the header and one row per sample", "
 
     const auto rows = lines(readText(csv));
     REQUIRE(rows.size() == (std::size_t) length + 1);
-    // Every field of EnergyLedger: the five components, their total, and the balance terms.
+    // The ledger's terms (the drum's five), their total, and the balance terms.
     CHECK(rows.front()
           == "time_s,batter_J,carry_J,mallets_J,snares_J,cavity_J,total_J,dissipated_J,injected_J,balance_J");
+    const auto columns = energyColumns(rows.front());
 
     double maxTotal = 0.0, firstBalance = 0.0, maxDeviation = 0.0;
     for (std::size_t i = 1; i < rows.size(); ++i)
@@ -338,17 +343,21 @@ TEST_CASE("energy csv: --energy-csv writes the header and one row per sample", "
             p = next + 1; // skip the comma
         }
         INFO("row " << i << ": " << rows[i]);
-        REQUIRE(fields.size() == 10);
+        REQUIRE(fields.size() == columns.names.size());
         CHECK(fields[0] == Approx((double) (i - 1) / rate));
         for (const double v : fields)
             REQUIRE(std::isfinite(v));
-        CHECK(fields[6] == Approx(fields[1] + fields[2] + fields[3] + fields[4] + fields[5])); // total
-        CHECK(fields[9] == Approx(fields[6] + fields[7] - fields[8]).margin(1e-12)); // balance
+        double sum = 0.0;
+        for (const auto t : columns.terms)
+            sum += fields[t];
+        CHECK(fields[columns.total] == Approx(sum)); // total
+        CHECK(fields[columns.balance]
+              == Approx(fields[columns.total] + fields[columns.dissipated] - fields[columns.injected]).margin(1e-12));
 
-        maxTotal = std::max(maxTotal, fields[6]);
+        maxTotal = std::max(maxTotal, fields[columns.total]);
         if (i == 1)
-            firstBalance = fields[9];
-        maxDeviation = std::max(maxDeviation, std::abs(fields[9] - firstBalance));
+            firstBalance = fields[columns.balance];
+        maxDeviation = std::max(maxDeviation, std::abs(fields[columns.balance] - firstBalance));
     }
     CHECK(maxTotal > 0.0);                       // the strike put energy in:
     // the mallet's (1/2) M v^2 at velocity 100, less what the first step's losses took (1e-6 of it)
@@ -358,6 +367,67 @@ TEST_CASE("energy csv: --energy-csv writes the header and one row per sample", "
     CHECK(maxDeviation <= 1.0e-9 * maxTotal);    // balance constant (lossy run)
 
     CHECK(entries(dir.out()) == std::vector<std::string> { "e.csv", "e.wav" });
+}
+
+TEST_CASE("energy terms: the CSV's columns and the JSON's energy_max_J are the engine ledger's terms, in order", "[renderer]")
+{
+    TempDir dir;
+    const auto wav = dir.out() / "terms.wav";
+    const auto csv = dir.out() / "terms.csv";
+    const auto run = runRenderer({ "-o", wav.string(), "--energy-csv", csv.string(), "--hit", "0:110", "--seconds",
+                                   "0.05", "--sample-rate", "44100", "--json" },
+                                 dir.root() / "capture");
+    INFO("stdout: " << run.out << "\nstderr: " << run.err);
+    REQUIRE(run.exitCode == 0);
+
+    // The ledger of the drum the renderer builds (the default parameters).
+    const snaresim::Drum drum(snaresim::makeDrumConfig(snaresim::ParameterSet {}, 44100.0));
+    std::vector<std::string> termColumns;
+    for (const auto& term : drum.energy().terms())
+        termColumns.push_back(snaresim::EnergyLedger::columnName(term.name));
+    REQUIRE(! termColumns.empty());
+
+    const auto rows = lines(readText(csv));
+    REQUIRE(rows.size() == 2206); // the header and 0.05 s at 44.1 kHz
+    const auto columns = energyColumns(rows.front());
+    std::vector<std::string> csvTerms;
+    for (const auto t : columns.terms)
+        csvTerms.push_back(columns.names[t]);
+    CHECK(csvTerms == termColumns);
+
+    // The JSON: energy_max_J holds each term and the total, in the CSV's order, each the
+    // largest value of its column.
+    const auto json = parseJson(run.out);
+    REQUIRE(json.isObject());
+    const auto maxima = json["energy_max_J"];
+    REQUIRE(maxima.getDynamicObject() != nullptr);
+    std::vector<std::string> keys;
+    for (const auto& property : maxima.getDynamicObject()->getProperties())
+        keys.push_back(property.name.toString().toStdString());
+    auto expectedKeys = termColumns;
+    expectedKeys.push_back("total_J");
+    CHECK(keys == expectedKeys);
+
+    std::vector<std::size_t> checked = columns.terms;
+    checked.push_back(columns.total);
+    std::vector<double> largest(checked.size(), -std::numeric_limits<double>::infinity());
+    for (std::size_t i = 1; i < rows.size(); ++i)
+    {
+        const auto fields = csvFields(rows[i]);
+        REQUIRE(fields.size() == columns.names.size());
+        for (std::size_t c = 0; c < checked.size(); ++c)
+            largest[c] = std::max(largest[c], std::stod(fields[checked[c]]));
+    }
+    for (std::size_t c = 0; c < checked.size(); ++c)
+    {
+        const auto& name = columns.names[checked[c]];
+        INFO("column " << name);
+        CHECK((double) maxima[juce::Identifier(name)] == Approx(largest[c]).epsilon(1e-12));
+    }
+    // The mallet brought the strike's energy and gave some of it to the batter.
+    CHECK((double) maxima["batter_J"] > 0.0);
+    CHECK((double) maxima["mallets_J"] > 0.0);
+    CHECK((double) maxima["total_J"] > 0.0);
 }
 
 TEST_CASE("list params: --list-params lists every parameter", "[renderer]")

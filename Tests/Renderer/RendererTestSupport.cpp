@@ -185,6 +185,38 @@ std::string readText(const fs::path& file)
     return text.str();
 }
 
+std::vector<std::string> csvFields(const std::string& line)
+{
+    std::vector<std::string> fields(1);
+    for (const char c : line)
+        if (c == ',')
+            fields.emplace_back();
+        else
+            fields.back() += c;
+    return fields;
+}
+
+EnergyColumns energyColumns(const std::string& header)
+{
+    EnergyColumns c;
+    c.names = csvFields(header);
+    INFO("energy CSV header: " << header);
+    const std::size_t n = c.names.size();
+    REQUIRE(n >= 5);
+    REQUIRE(c.names.front() == "time_s");
+    REQUIRE(c.names[n - 4] == "total_J");
+    REQUIRE(c.names[n - 3] == "dissipated_J");
+    REQUIRE(c.names[n - 2] == "injected_J");
+    REQUIRE(c.names[n - 1] == "balance_J");
+    for (std::size_t i = 1; i + 4 < n; ++i)
+        c.terms.push_back(i);
+    c.total = n - 4;
+    c.dissipated = n - 3;
+    c.injected = n - 2;
+    c.balance = n - 1;
+    return c;
+}
+
 juce::var parseJson(const std::string& text)
 {
     juce::var result;

@@ -98,6 +98,19 @@ juce::var parseJson(const std::string& text);
 // Every line of a text, without the line ends.
 std::vector<std::string> lines(const std::string& text);
 
+// The comma-separated fields of a line.
+std::vector<std::string> csvFields(const std::string& line);
+
+// The columns of an energy CSV (--energy-csv), from its header line: time_s, the ledger's terms,
+// total_J, dissipated_J, injected_J, balance_J (REQUIRE: the fixed ones are there, in that order).
+struct EnergyColumns
+{
+    std::vector<std::string> names;
+    std::vector<std::size_t> terms; // the columns between time_s and total_J
+    std::size_t total = 0, dissipated = 0, injected = 0, balance = 0;
+};
+EnergyColumns energyColumns(const std::string& header);
+
 // The renderer's drum played in-process, as Renderer.cpp plays it: each strike (sample, MIDI
 // velocity) at the default strike point before the step of its sample, the mix as float.
 struct EngineRun
