@@ -64,7 +64,7 @@ TEST_CASE ("a note inside a block starts on its own sample", "[processor][midi]"
     CHECK (a.samples == engineRender (settings.currentParameters(), 48000.0, 3000, { { 300, 38, 100 } }));
 }
 
-TEST_CASE ("note-offs and all-notes-off leave the drum ringing; all-sound-off silences it", "[processor][midi]")
+TEST_CASE ("note-offs and all-notes-off leave the drum ringing, and all-sound-off silences it", "[processor][midi]")
 {
     auto renderWith = [] (std::vector<Event> extra)
     {
