@@ -11,7 +11,7 @@ namespace
 {
 double cavityStiffness(const CavitySpec& s, double radius, double depth)
 {
-    if (s.model == AirModel::none)
+    if (s.model != AirModel::cavity) // no air, or the air box (DrumAir)
         return 0.0;
     const double V0 = std::numbers::pi * radius * radius * depth;
     return s.airDensity_kg_per_m3 * s.soundSpeed_m_per_s * s.soundSpeed_m_per_s / V0;

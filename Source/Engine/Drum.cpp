@@ -32,7 +32,7 @@ std::vector<Mallet> makeMallets(const DrumConfig& c, const Membrane& batter, dou
 }
 } // namespace
 
-// The ledger's terms in column order, eq. (34): H = H_b + H_c + H_M + H_s + the cavity's, each
+// The ledger's terms in column order, eq. (34): H = H_b + H_c + H_M + H_s + the air's, each
 // the sum of its owners' energies (and step losses) in the order listed. A new component or
 // coupling that stores energy adds its term here. (CavityCoupling stores none: no term lists it.)
 auto Drum::energyTerms() const
@@ -41,7 +41,8 @@ auto Drum::energyTerms() const
                         EnergyTerm("carry", carryHead),                            // eq. (35)
                         EnergyTerm("mallets", mallets, malletCoupling),            // eq. (37)
                         EnergyTerm("snares", wires, snareCoupling).when(engaged),  // eq. (38)
-                        EnergyTerm("cavity", air) };                               // (K/2) dV^{n+1} dV^n
+                        EnergyTerm("cavity", air),                                 // (K/2) dV^{n+1} dV^n
+                        EnergyTerm("airbox", box).listedIf(box.active()) };        // eq. (36)
 }
 
 Drum::Drum(const DrumConfig& config)
@@ -51,6 +52,11 @@ Drum::Drum(const DrumConfig& config)
       mallets(makeMallets(cfg, batterHead, k)), malletCoupling(batterHead, mallets), airCoupling(batterHead, carryHead, air),
       engaged(cfg.snares.engaged)
 {
+    if (cfg.cavity.model == AirModel::airbox)
+    {
+        box.build(cfg, batterHead, carryHead);
+        wiresSaved = wires.uNext;
+    }
     const auto terms = energyTerms();
     registerTerms(ledger, terms);
     malletsTerm = termOwning(terms, mallets);
@@ -119,10 +125,22 @@ void Drum::playNote(int note, int velocity)
            r * std::sin(a.angle_rad));
 }
 
-void Drum::applyLive(const DrumConfig& n) noexcept
+void Drum::applyLive(const DrumConfig& next) noexcept
 {
+    // The air box keeps its model and box (its grid); the rest as for the other models.
+    DrumConfig kept { DrumConfig::Unmapped {} };
+    if (box.active())
+    {
+        kept = next;
+        kept.cavity.model = AirModel::airbox;
+        kept.air = cfg.air;
+    }
+    const DrumConfig& n = box.active() ? kept : next;
+    const double gains[2] = { batterHead.forceGain(), carryHead.forceGain() };
     batterHead.setCoefficients(n.batter.tension_N_per_m, n.batter.sigma0_per_s, n.batter.sigma1_m2_per_s);
     carryHead.setCoefficients(n.carry.tension_N_per_m, n.carry.sigma0_per_s, n.carry.sigma1_m2_per_s);
+    if (box.active() && (gains[0] != batterHead.forceGain() || gains[1] != carryHead.forceGain()))
+        box.refresh(); // refactors the embeddings' solves (allocates: the air box is not real-time)
     wires.setCoefficients(n.snares.tension_N, n.snares.sigma0_per_s, n.snares.sigma1_m2_per_s);
     snareCoupling.setLaw(n.snares.stiffness, n.snares.exponent);
     air.setSpec(n.cavity, n.batter.radius_m);
@@ -203,7 +221,7 @@ void Drum::setSnaresEngaged(bool on)
     ledger.change(snaresTerm, after - before);
 }
 
-double Drum::step()
+void Drum::stepCouplings()
 {
     // 1. The components' free updates, with the cavity's pressure at time n on the heads
     //    (explicit, CavityCoupling.h).
@@ -216,16 +234,26 @@ double Drum::step()
 
     // 2. The couplings: each solves for its forces and adds them to the free updates.
     const auto mallet = malletCoupling.step(); // eq. (44)-(45)
-    int iterations = mallet.iterations;
-    bool fallback = mallet.fallback;
     if (engaged)
     {
         const auto snare = snareCoupling.step(); // eq. (48)-(50)
-        iterations = std::max(iterations, snare.iterations);
-        fallback = fallback || snare.fallback;
-        stats.maxSnareIterations = std::max(stats.maxSnareIterations, snare.iterations);
-        stats.snareContacts = snare.contacts;
-        stats.maxSnarePenetration_m = std::max(stats.maxSnarePenetration_m, snare.maxPenetration_m);
+        noteSolves(mallet, &snare);
+    }
+    else
+        noteSolves(mallet, nullptr);
+}
+
+void Drum::noteSolves(const ContactSolveResult& mallet, const SnareSolveResult* snare)
+{
+    int iterations = mallet.iterations;
+    bool fallback = mallet.fallback;
+    if (snare)
+    {
+        iterations = std::max(iterations, snare->iterations);
+        fallback = fallback || snare->fallback;
+        stats.maxSnareIterations = std::max(stats.maxSnareIterations, snare->iterations);
+        stats.snareContacts = snare->contacts;
+        stats.maxSnarePenetration_m = std::max(stats.maxSnarePenetration_m, snare->maxPenetration_m);
     }
     if (iterations > 0)
     {
@@ -234,6 +262,58 @@ double Drum::step()
     }
     if (fallback)
         ++stats.fallbacks;
+}
+
+void Drum::stepCouplingsInAir()
+{
+    // 1. The free updates: the air (eq. 25) and the components, the heads without pressure
+    //    (the embeddings carry it, eq. 7).
+    box.computeFree();
+    batterHead.computeFree();
+    carryHead.computeFree();
+    if (engaged)
+        wires.computeFree();
+    for (auto& ml : mallets)
+        ml.computeFree();
+
+    // 2. Each head with its air (eq. 7-8) and its contacts, solved jointly (DrumAir.h).
+    for (size_t i = 0; i < mallets.size(); ++i)
+        malletsSaved[i] = mallets[i].zNext;
+    ContactSolveResult mallet;
+    const auto onBatter = box.solveBatter([&] { mallet = malletCoupling.step(); }, // eq. (44)-(45)
+                                          [&] {
+                                              for (size_t i = 0; i < mallets.size(); ++i)
+                                                  mallets[i].zNext = malletsSaved[i];
+                                          });
+    JointSolveResult onCarry;
+    if (engaged)
+    {
+        wiresSaved = wires.uNext;
+        snareCoupling.saveTrial();
+        SnareSolveResult snare;
+        onCarry = box.solveCarry([&] { snare = snareCoupling.step(); }, // eq. (48)-(50)
+                                 [&] {
+                                     wires.uNext = wiresSaved;
+                                     snareCoupling.restoreTrial();
+                                 });
+        noteSolves(mallet, &snare);
+    }
+    else
+    {
+        onCarry = box.solveCarry([] {}, [] {});
+        noteSolves(mallet, nullptr);
+    }
+    stats.maxAirTrials = std::max({ stats.maxAirTrials, onBatter.trials, onCarry.trials });
+    stats.airCapped += (onBatter.capped ? 1 : 0) + (onCarry.capped ? 1 : 0);
+    box.listen();
+}
+
+double Drum::step()
+{
+    if (box.active())
+        stepCouplingsInAir();
+    else
+        stepCouplings();
     retrieveRisingMallets();
 
     const double dVNow = air.volumeChangeNow();
@@ -246,7 +326,8 @@ double Drum::step()
     signals.top_m_per_s = velocityAt(batterHead, topMic);
     signals.bottom_m_per_s = velocityAt(carryHead, bottomMic);
     const double d2V = (air.volumeChangeNext() - 2.0 * dVNow + dVPrev) / (k * k);
-    signals.far_Pa = cfg.cavity.airDensity_kg_per_m3 / (4.0 * std::numbers::pi * cfg.mics.farDistance_m) * d2V;
+    signals.far_Pa = box.active() ? box.micPressure(box.numMics() - 1)
+                                  : cfg.cavity.airDensity_kg_per_m3 / (4.0 * std::numbers::pi * cfg.mics.farDistance_m) * d2V;
     const auto& m = cfg.mics;
     signals.mix = cfg.outputGain
                 * (m.mixTop * m.topGain * signals.top_m_per_s + m.mixBottom * m.bottomGain * signals.bottom_m_per_s
@@ -262,6 +343,8 @@ double Drum::step()
         snareCoupling.advance();
     }
     air.advance();
+    if (box.active())
+        box.advance();
     for (auto& ml : mallets)
         ml.advance();
     return signals.mix;
@@ -314,6 +397,7 @@ void Drum::reset()
     wires.clear();
     snareCoupling.clear();
     air.clear();
+    box.clear();
     for (auto& m : mallets)
         m.park();
     ledger.clearValues();

@@ -1,5 +1,5 @@
 #pragma once
-// The assembled model (eq. 1-50, the air box replaced by the reduced cavity), in the paper's
+// The assembled model (eq. 1-50; the air as the reduced cavity, or the air box, DrumAir.h), in the paper's
 // terms: components, each with its own state, free update and energy (the batter and carry
 // Membranes, the SnareWires, the Mallets, the Cavity), and couplings, each with its own forces,
 // solve and energy (MalletContact, SnareContact with the attached ends, CavityCoupling).
@@ -9,6 +9,7 @@
 #include "Articulations.h"
 #include "Cavity.h"
 #include "CavityCoupling.h"
+#include "DrumAir.h"
 #include "DrumConfig.h"
 #include "DrumSnapshot.h"
 #include "EnergyLedger.h"
@@ -18,6 +19,7 @@
 #include "SnareContact.h"
 #include "SnareWires.h"
 
+#include <array>
 #include <vector>
 
 namespace snaresim
@@ -31,6 +33,8 @@ struct SolverStats
     long fallbacks = 0;         // steps where a Newton solve missed its cap and fell back
     int snareContacts = 0;      // snare points touching the carry head after the last step
     double maxSnarePenetration_m = 0.0; // largest xi since resetStats()
+    int maxAirTrials = 0;       // air box: most contact trials of one head's joint solve (DrumAir.h)
+    long airCapped = 0;         // air box: joint solves stopped at their cap
 };
 
 enum class Mic
@@ -46,7 +50,7 @@ struct MicSignals
 {
     double top_m_per_s = 0.0;
     double bottom_m_per_s = 0.0;
-    double far_Pa = 0.0;        // monopole rho_a / (4 pi r) d^2(net displaced volume)/dt^2
+    double far_Pa = 0.0;        // monopole rho_a / (4 pi r) d^2(net displaced volume)/dt^2; air box: the last air mic
     double mix = 0.0;           // the output sample
 };
 
@@ -107,6 +111,11 @@ public:
     const SnareWires& snareWires() const { return wires; }
     const SnareContact& snareContact() const { return snareCoupling; }
     const Cavity& cavity() const { return air; }
+    // The air box (AirModel::airbox): active() false otherwise.
+    const DrumAir& airBox() const { return box; }
+    // The air microphones' pressure rho_a dt+ Psi (Pa) at the last step (air box only; 0 mics otherwise).
+    int numAirMics() const { return box.active() ? box.numMics() : 0; }
+    double airMicPressure(int i) const { return box.micPressure(i); }
     const Mallet& mallet(int i) const { return mallets[(size_t) i]; }
     bool isFinite() const;
 
@@ -118,6 +127,9 @@ public:
 private:
     auto energyTerms() const; // the ledger's terms and their owners (Drum.cpp)
     void updateEnergy();
+    void stepCouplings();      // steps 1-2 of step() (free updates, couplings)
+    void stepCouplingsInAir(); // the same with the air box
+    void noteSolves(const ContactSolveResult& mallet, const SnareSolveResult* snare);
     void retrieveRisingMallets();
     double velocityAt(const Membrane& head, const GridDistribution& point) const;
 
@@ -133,6 +145,9 @@ private:
     std::vector<Mallet> mallets; // components; never resized after construction
     MalletContact malletCoupling; // coupling: mallets - batter
     CavityCoupling airCoupling;  // coupling: heads - cavity
+    DrumAir box;                 // component (air box) with its couplings to the heads; inactive without
+    std::vector<double> wiresSaved; // air box: the wires' free u^{n+1}, for the joint solve's trials
+    std::array<double, MalletContact::maxMallets> malletsSaved {};
 
     GridDistribution topMic, bottomMic;
     EnergyLedger ledger;

@@ -43,6 +43,51 @@ void validateMembrane(const MembraneSpec& m, double k, double reserve)
             pointsPerRadius);
     require(pointsPerRadius <= 1500.0, "the head grid would be too large (more than 1500 points per radius)", pointsPerRadius);
 }
+void validateAirBox(const DrumConfig& c)
+{
+    const DrumAirSpec& a = c.air;
+    require(a.walls == AirWalls::absorbing || a.walls == AirWalls::reflecting, "air box walls must be absorbing or reflecting",
+            (double) a.walls);
+    require(std::isfinite(a.sigma_m) && a.sigma_m >= 0.0 && a.sigma_m <= 1e-3, "air box sigma_a must be within 0..1e-3 m", a.sigma_m);
+    require(std::isfinite(a.gridCoarseness) && a.gridCoarseness >= 1.0 && a.gridCoarseness <= 10.0,
+            "air box grid coarseness must be within 1..10: a grid finer than the stability bound (eq. 41) is unstable",
+            a.gridCoarseness);
+    require(a.threads >= 1 && a.threads <= 64, "air box threads must be within 1..64", a.threads);
+    require(a.numMics >= 0 && a.numMics <= DrumAirSpec::maxMics, "number of air microphones must be within 0..8", a.numMics);
+    require(std::isfinite(a.margin_m) && a.margin_m >= 0.0, "air box margin must be >= 0", a.margin_m);
+    const AirBoxSpec box = c.airBoxSpec();
+    const double h = AirBox::gridSpacing(box, 1.0 / c.sampleRate_Hz);
+    const double R = c.batter.radius_m, H = c.cavity.shellDepth_m;
+    const char* axis[3] = { "x", "y", "z" };
+    for (int i = 0; i < 3; ++i)
+    {
+        const double L = box.size_m[(size_t) i];
+        require(std::isfinite(L) && L > 0.0 && L <= 20.0, "air box sides must be within 0..20 m", L);
+        // the drum with two cells of air beyond it (the embedding's and the shell's needs, eq. 41 grid)
+        const double need = (i < 2 ? 2.0 * R : H) + 4.0 * h;
+        if (L < need)
+        {
+            std::ostringstream msg;
+            msg << "the air box does not hold the drum: its " << axis[i] << " side is " << L << " m, but the drum (radius " << R
+                << " m, shell depth " << H << " m) needs at least " << need << " m with two air cells (h_a = " << h
+                << " m) around it";
+            throw std::invalid_argument(msg.str());
+        }
+    }
+    require(H >= 3.0 * h, "the shell depth must be at least three air cells (h_a of eq. 41) for the air between the heads", H / h);
+    const double points = std::ceil(box.size_m[0] / h) * std::ceil(box.size_m[1] / h) * std::ceil(box.size_m[2] / h);
+    require(points <= 6e7, "the air box would have too many points (limit 6e7); make it smaller or lower the sample rate", points);
+    std::array<AirPoint, DrumAirSpec::maxMics> mics;
+    const int n = c.airMicPoints(mics);
+    for (int m = 0; m < n; ++m)
+    {
+        const AirPoint& p = mics[(size_t) m];
+        const double v[3] = { p.x_m, p.y_m, p.z_m };
+        for (int i = 0; i < 3; ++i)
+            require(std::isfinite(v[i]) && std::abs(v[i]) <= 0.5 * box.size_m[(size_t) i] - h,
+                    "air microphones must lie inside the air box, a cell from its walls (coordinate in m)", v[i]);
+    }
+}
 } // namespace
 
 void DrumConfig::validate() const
@@ -50,7 +95,8 @@ void DrumConfig::validate() const
     require(std::isfinite(sampleRate_Hz) && sampleRate_Hz >= 1000.0 && sampleRate_Hz <= 768000.0,
             "sample rate must be within 1000..768000 Hz", sampleRate_Hz);
     const double k = 1.0 / sampleRate_Hz;
-    require(cavity.model == AirModel::none || cavity.model == AirModel::cavity, "unknown air model", (double) cavity.model);
+    require(cavity.model == AirModel::none || cavity.model == AirModel::cavity || cavity.model == AirModel::airbox,
+            "unknown air model", (double) cavity.model);
     require(std::isfinite(cavity.shellDepth_m) && cavity.shellDepth_m >= 0.02 && cavity.shellDepth_m <= 1.0,
             "shell depth must be within 0.02..1 m", cavity.shellDepth_m);
     require(std::isfinite(cavity.gridShellDepth_m) && cavity.gridShellDepth_m >= 0.0, "grid shell depth must be >= 0", cavity.gridShellDepth_m);
@@ -101,6 +147,47 @@ void DrumConfig::validate() const
     for (double g : { mics.topGain, mics.bottomGain, mics.farGain, mics.mixTop, mics.mixBottom, mics.mixFar })
         require(std::isfinite(g), "microphone gains must be finite", g);
     require(std::isfinite(outputGain), "output gain must be finite", outputGain);
+    if (cavity.model == AirModel::airbox)
+        validateAirBox(*this);
+}
+
+AirBoxSpec DrumConfig::airBoxSpec() const
+{
+    const double R = batter.radius_m, H = cavity.shellDepth_m;
+    const double extent[3] = { 2.0 * R, 2.0 * R, H };
+    AirBoxSpec s;
+    s.soundSpeed_m_per_s = cavity.soundSpeed_m_per_s;
+    s.density_kg_per_m3 = cavity.airDensity_kg_per_m3;
+    s.sigma_m = air.sigma_m;
+    s.gridCoarseness = air.gridCoarseness;
+    for (int a = 0; a < 3; ++a)
+        s.size_m[(size_t) a] = air.size_m[(size_t) a] > 0.0 ? air.size_m[(size_t) a] : extent[a] + 2.0 * air.margin_m;
+    s.walls = air.walls;
+    s.shell = true;
+    s.shellRadius_m = R;
+    s.shellDepth_m = H;
+    s.shellEnds = ShellEnds::closed;
+    return s;
+}
+
+int DrumConfig::airMicPoints(std::array<AirPoint, DrumAirSpec::maxMics>& out) const
+{
+    if (air.numMics > 0)
+    {
+        const int n = std::min(air.numMics, DrumAirSpec::maxMics);
+        std::copy_n(air.mics.begin(), n, out.begin());
+        return n;
+    }
+    const double R = batter.radius_m, H = cavity.shellDepth_m;
+    const AirBoxSpec box = airBoxSpec();
+    const double h = AirBox::gridSpacing(box, 1.0 / sampleRate_Hz);
+    const double reach = 0.25 / std::sqrt(2.0);
+    const double top = std::min(0.5 * H + reach, 0.5 * box.size_m[2] - 1.5 * h);
+    const double side = std::min(reach, 0.5 * box.size_m[0] - 1.5 * h);
+    out[0] = { 0.7 * R, 0.0, 0.5 * H + 0.04 };
+    out[1] = { 0.0, 0.0, -0.5 * H - 0.04 };
+    out[2] = { side, 0.0, top };
+    return 3;
 }
 
 SnareSpec DrumConfig::fittedSnares() const
@@ -128,6 +215,8 @@ DrumConfig DrumConfig::lossless() const
     c.carry.sigma1_m2_per_s = 0.0;
     c.snares.sigma0_per_s = 0.0;
     c.snares.sigma1_m2_per_s = 0.0;
+    c.air.walls = AirWalls::reflecting;
+    c.air.sigma_m = 0.0;
     return c;
 }
 

@@ -5,7 +5,10 @@
 // ("from the schema"): DrumConfig{} is the schema's default drum (Parameters.h) at 48 kHz,
 // so there is one default drum.
 
+#include "AirBox.h"
 #include "Parameters.h"
+
+#include <array>
 
 namespace snaresim
 {
@@ -66,7 +69,8 @@ struct SnareSpec
 enum class AirModel
 {
     none,   // heads uncoupled
-    cavity  // uniform-pressure adiabatic cavity (Cavity.h)
+    cavity, // uniform-pressure adiabatic cavity (Cavity.h)
+    airbox  // the 3D air box around and inside the drum, heads embedded (eq. 5-8; DrumAir.h)
 };
 
 struct CavitySpec
@@ -76,6 +80,29 @@ struct CavitySpec
     double gridShellDepth_m = 0.0;      // shallowest depth the grid allows (0: the depth itself)
     double airDensity_kg_per_m3 = 1.21;
     double soundSpeed_m_per_s = 343.0;
+};
+
+// A point in the air, metres from the drum's centre (z up, the batter at z = +H/2).
+struct AirPoint
+{
+    double x_m = 0.0, y_m = 0.0, z_m = 0.0;
+};
+
+// The air box of AirModel::airbox (density and sound speed from CavitySpec; the shell is rigid,
+// its depth CavitySpec::shellDepth_m). Not a parameter: set by the config's owner.
+struct DrumAirSpec
+{
+    // Box sides (x, y, z), centred on the drum. A side <= 0: the drum's extent plus twice margin_m.
+    std::array<double, 3> size_m { 0.6, 0.6, 0.6 };
+    double margin_m = 0.12;
+    AirWalls walls = AirWalls::absorbing;
+    double sigma_m = 2e-6;               // sigma_a, eq. (5)
+    double gridCoarseness = 1.0;         // h_a = coarseness * bound of eq. (41); >= 1
+    int threads = 1;                     // AirBox::setThreads
+    // Pressure microphones rho_a dt Psi; none given: airMicPoints() gives the defaults.
+    static constexpr int maxMics = 8;
+    std::array<AirPoint, maxMics> mics {};
+    int numMics = 0;
 };
 
 // Microphones: velocity of each head at a point, and the far-field monopole.
@@ -103,6 +130,7 @@ struct DrumConfig
     MembraneSpec carry { .radius_m = 0.1778, .density_kg_per_m2 = 0.106 }; // 3 mil PET
     SnareSpec snares;
     CavitySpec cavity;
+    DrumAirSpec air;                    // used when cavity.model == AirModel::airbox
     MicSpec mics;
     MalletSpec mallet;
     int numMallets = 4;                 // independent mallets for flams and rolls
@@ -114,13 +142,22 @@ struct DrumConfig
     // grid the scheme needs cannot be built.
     void validate() const;
 
-    // All losses off (sigma0 = sigma1 = 0): the energy is then conserved to round-off.
+    // All losses off (sigma0 = sigma1 = 0, the air box's walls reflecting and sigma_a = 0):
+    // the energy is then conserved to round-off.
     DrumConfig lossless() const;
 
     // The snare wires as simulated: on a coarse carry-head grid (low sample rates, coarse
     // quality) their band is shrunk, length and spacing alike, until every wire end has a
     // head node at least 1.5 h_c inside the rim.
     SnareSpec fittedSnares() const;
+
+    // The air box of AirModel::airbox: its size resolved, the rigid shell with closed ends
+    // (the heads replace the discs).
+    AirBoxSpec airBoxSpec() const;
+    // The air microphones: air.mics, or when none is given a close top mic 4 cm above the
+    // batter at 0.7 R, a bottom mic 4 cm under the carry head's centre (under the snares), and
+    // a far mic 0.25 m from the batter's centre at 45 degrees (clamped inside the box).
+    int airMicPoints(std::array<AirPoint, DrumAirSpec::maxMics>& out) const;
 };
 
 // Map the user-facing parameters onto the physical description, validated (throws

@@ -69,6 +69,17 @@ public:
         return t;
     }
 
+    // The same term left out of the ledger's layout (no column) when absent: for a component
+    // only some drums have (the air box). An absent term must also be out of the model (0 J).
+    EnergyTerm listedIf(bool present) const
+    {
+        EnergyTerm t = *this;
+        t.listed = present;
+        t.on = t.on && present;
+        return t;
+    }
+    bool isListed() const { return listed; }
+
     // The owners' energies added in their order.
     double energy() const
     {
@@ -113,13 +124,14 @@ private:
 
     std::tuple<const Owners&...> sources;
     bool on = true;
+    bool listed = true;
 };
 
-// Register every term of the list in the ledger, in order.
+// Register every listed term of the list in the ledger, in order.
 template <class... Terms>
 void registerTerms(EnergyLedger& ledger, const std::tuple<Terms...>& terms)
 {
-    std::apply([&](const auto&... t) { (ledger.addTerm(t.name), ...); }, terms);
+    std::apply([&](const auto&... t) { ((t.isListed() ? (void) ledger.addTerm(t.name) : (void) 0), ...); }, terms);
 }
 
 // The index of the first term owning owner (-1 when none does).
@@ -127,7 +139,9 @@ template <class... Terms, class T>
 int termOwning(const std::tuple<Terms...>& terms, const T& owner)
 {
     int index = -1, i = 0;
-    std::apply([&](const auto&... t) { ((index < 0 && t.owns(owner) ? (void) (index = i) : (void) 0, ++i), ...); }, terms);
+    std::apply([&](const auto&... t) {
+        ((index < 0 && t.isListed() && t.owns(owner) ? (void) (index = i) : (void) 0, i += t.isListed() ? 1 : 0), ...);
+    }, terms);
     return index;
 }
 
@@ -138,7 +152,7 @@ void record(EnergyLedger& ledger, const std::tuple<Terms...>& terms)
 {
     static_assert(sizeof...(Terms) > 0);
     int i = 0;
-    std::apply([&](const auto&... t) { (ledger.set(i++, t.energy()), ...); }, terms);
+    std::apply([&](const auto&... t) { ((t.isListed() ? ledger.set(i++, t.energy()) : (void) 0), ...); }, terms);
     const double loss = std::apply([](const auto& first, const auto&... rest) {
         double q = first.stepLoss();
         ((q += rest.stepLoss()), ...);

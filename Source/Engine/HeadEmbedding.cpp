@@ -3,6 +3,7 @@
 #include "AirBox.h"
 #include "Membrane.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -53,6 +54,11 @@ HeadEmbedding::HeadEmbedding(AirBox& a, Membrane& m, double z, double cx, double
     J.resize((Eigen::Index) below.size(), (Eigen::Index) support.size());
     J.setFromTriplets(t.begin(), t.end());
     Jt = J.transpose();
+    const auto na = (Eigen::Index) below.size(), nm = (Eigen::Index) support.size();
+    for (auto* v : { &wFree, &wPrev, &r, &pull, &base, &w, &jts })
+        v->setZero(nm);
+    for (auto* v : { &y, &dv, &s, &sNew, &jr })
+        v->setZero(na);
     refresh();
 }
 
@@ -79,11 +85,15 @@ void HeadEmbedding::refresh()
 
 void HeadEmbedding::step()
 {
+    solveFree();
+    finish();
+}
+
+void HeadEmbedding::solveFree()
+{
     const size_t na = below.size(), nm = support.size();
-    double* next = air.next();
+    const double* next = air.next();
     const double* prev = air.prev();
-    wFree.resize((Eigen::Index) nm);
-    wPrev.resize((Eigen::Index) nm);
     const auto& wm = head.previousDisplacement();
     for (size_t j = 0; j < nm; ++j)
     {
@@ -99,15 +109,73 @@ void HeadEmbedding::step()
         const double dStar = next[i + up] - next[i], dPrev = prev[i + up] - prev[i];
         y[(Eigen::Index) a] = ratio * beta * (alpha * y[(Eigen::Index) a] - (dStar - dPrev));
     }
-    r.noalias() = wFree + Jt * y;
+    r = wFree;
+    r.noalias() += Jt * y;
     // (1 + gamma J^T J)^{-1} = 1 - gamma J^T (1 + gamma J J^T)^{-1} J  (Woodbury)
     jr.noalias() = J * r;
-    jr = solver.solve(jr);
-    r.noalias() -= gamma * (Jt * jr);
+    s = solver.solve(jr);
+    pull.noalias() = Jt * s;
+    pull *= gamma;
+    w.noalias() = r - pull;
+    base = w;
+    wScale = 0.0;
     for (size_t j = 0; j < nm; ++j)
-        head.setNextAt(support[j], r[(Eigen::Index) j]);
+    {
+        head.setNextAt(support[j], w[(Eigen::Index) j]);
+        wScale = std::max(wScale, std::abs(w[(Eigen::Index) j]));
+    }
+}
+
+double HeadEmbedding::correct()
+{
+    // delta: what the coupling added over J's support since solveFree() / retry()
+    const size_t nm = support.size();
+    bool moved = false;
+    for (size_t j = 0; j < nm; ++j)
+    {
+        const double wj = head.nextAt(support[j]);
+        wFree[(Eigen::Index) j] = wj - base[(Eigen::Index) j]; // delta
+        moved = moved || wj != base[(Eigen::Index) j];
+    }
+    if (! moved)
+    {
+        w = base;
+        return 0.0;
+    }
+    wFree += r; // r + delta
+    jr.noalias() = J * wFree;
+    sNew = solver.solve(jr);
+    jts.noalias() = Jt * sNew;
+    double change = 0.0;
+    for (size_t j = 0; j < nm; ++j)
+    {
+        const double p = gamma * jts[(Eigen::Index) j];
+        change = std::max(change, std::abs(p - pull[(Eigen::Index) j]));
+        pull[(Eigen::Index) j] = p;
+        const double wj = wFree[(Eigen::Index) j] - p;
+        w[(Eigen::Index) j] = wj;
+        head.setNextAt(support[j], wj);
+    }
+    s.swap(sNew);
+    return change;
+}
+
+void HeadEmbedding::retry()
+{
+    base.noalias() = r - pull;
+    for (size_t j = 0; j < support.size(); ++j)
+        head.setNextAt(support[j], base[(Eigen::Index) j]);
+}
+
+void HeadEmbedding::finish()
+{
     // eq. (8): the head's velocity is the air's on both sides
-    dv.noalias() = J * (r - wPrev);
+    const size_t na = below.size();
+    double* next = air.next();
+    for (size_t j = 0; j < support.size(); ++j)
+        w[(Eigen::Index) j] = head.nextAt(support[j]);
+    wFree = w - wPrev;
+    dv.noalias() = J * wFree;
     for (size_t a = 0; a < na; ++a)
     {
         const double t = 0.5 * alpha * dv[(Eigen::Index) a];

@@ -32,8 +32,27 @@ public:
     HeadEmbedding(AirBox& air, Membrane& head, double z_m, double cx_m = 0.0, double cy_m = 0.0);
 
     // After air.computeNext() and head.computeFree() (and before any other force on the head):
-    // adds the coupling to both next levels.
+    // adds the coupling to both next levels. The same as solveFree() then finish().
     void step();
+
+    // The step in parts, for a head that another coupling (contacts) also moves this step.
+    // The coupling's forces act through the head's vacuum gain; A w = r + delta with
+    // A = 1 + gamma J^T J, so the air's share is found again from what the coupling added:
+    //   solveFree(): w^{n+1} = A^{-1} r over the head (the air's next level untouched);
+    //   correct():   after the coupling changed w^{n+1} by delta (its vacuum response, on top of
+    //                the last retry()/solveFree() value), s = (1 + gamma J J^T)^{-1} J (r + delta)
+    //                and w^{n+1} = r + delta - gamma J^T s, exactly A^{-1} (r + delta); returns
+    //                the largest change of gamma J^T s over the head (m), 0 when delta = 0;
+    //   retry():     w^{n+1} = r - gamma J^T s, the head as the coupling should see it before
+    //                its forces, for another trial with the latest s (the caller restores the
+    //                nodes outside J's support);
+    //   finish():    eq. (8) with the final w^{n+1}: adds the head's velocity to the air.
+    void solveFree();
+    double correct();
+    void retry();
+    void finish();
+    // Largest |w^{n+1}| over J's support after solveFree(): the scale of correct()'s change.
+    double scale() const { return wScale; }
 
     // Call after the head's coefficients change (its sigma0 enters the solve).
     void refresh();
@@ -54,7 +73,9 @@ private:
     Eigen::SparseMatrix<double, Eigen::RowMajor> Jt;
     Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
     double alpha = 0, beta = 0, ratio = 0, gamma = 0;
+    double wScale = 0;
     Eigen::VectorXd wFree, wPrev, r, y, jr, dv; // work vectors
+    Eigen::VectorXd s, sNew, pull, base, w, jts; // air-side vector, gamma J^T s, r - gamma J^T s, w^{n+1}
 };
 
 } // namespace snaresim

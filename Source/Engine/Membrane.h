@@ -57,6 +57,18 @@ public:
         sumNext += value - wNext[(size_t) node];
         wNext[(size_t) node] = value;
     }
+    // w^{n+1} copied out and back (w sized by the first call), for a step's coupling solved
+    // more than once (DrumAir).
+    void saveNext(std::vector<double>& w, double& sum) const
+    {
+        w = wNext;
+        sum = sumNext;
+    }
+    void restoreNext(const std::vector<double>& w, double sum)
+    {
+        wNext = w;
+        sumNext = sum;
+    }
     // h^2 sum(w) at n+1: the volume swept by the head (summed in computeFree, kept by the
     // force updates).
     double sweptVolumeNext() const { return h * h * sumNext; }

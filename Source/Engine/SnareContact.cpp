@@ -77,6 +77,7 @@ SnareContact::SnareContact(const SnareSpec& spec, SnareWires& wires, Membrane& c
     for (auto* v : { &gq, &alphaQ, &betaQ })
         v->assign(pointWireNode.size(), 0.0);
     psiQ.assign(pointWireNode.size(), 0.0);
+    trialPsi = psiQ;
     rLast.assign(pointWireNode.size(), std::numeric_limits<double>::quiet_NaN());
     xiNext.assign(pointWireNode.size(), 0.0);
     xiNow = xiNext;

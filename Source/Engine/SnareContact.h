@@ -80,6 +80,11 @@ public:
     // the same gap for interior node l (1 ... M-1) of wire i
     double gapAt(int wire, int l) const;
 
+    // The state a step changes beyond the wires' and the head's next levels (the quadratised
+    // psi), saved before a step and put back to solve the same step again (DrumAir).
+    void saveTrial() { trialPsi = psiQ; }
+    void restoreTrial() { psiQ = trialPsi; }
+
     void advance();
     // Lay the wires on the carry head as it is at n and n-1 (snares engaged): every node
     // moves with the head node it maps to, gaps are zero.
@@ -131,6 +136,7 @@ private:
     std::vector<double> xiNext, xiNow, xiPrev;
     std::vector<double> rLast; // last step's root per point (NaN when it was not solved): Newton's start
     std::vector<double> psiQ;  // quadratised: psi at n+1/2 (after step) / n-1/2 (before), per point
+    std::vector<double> trialPsi; // psiQ before the step (saveTrial)
     std::vector<int> endGroups;              // groups holding wire ends (solved every step)
     std::vector<int> openGroups;             // groups without wire ends
     std::vector<unsigned char> mayTouch;     // quadratised: per point, xi*, xi^n or xi^{n-1} > 0 (padded by 8)

@@ -1,0 +1,122 @@
+#pragma once
+// The drum inside the air box (AirModel::airbox; docs/MODEL.md, "The drum in the air box"):
+// the 3D air (eq. 5, 25, 41, 51) with the rigid shell (eq. 6), the batter embedded at z = +H/2
+// and the carry head at z = -H/2 (eq. 7-8), each closing one end of the shell: the air inside
+// the shell lies between them, the outside air all around. A component for the ledger: the
+// air's energy (eq. 36) and losses; the embeddings store none.
+//
+// The joint solve. A head's update with its air is A w^{n+1} = r with A = 1 + gamma J^T J
+// (HeadEmbedding.h), so a contact force distribution g moves the head by A^{-1} g, not by g.
+// The contacts (MalletContact, SnareContact) solve with the vacuum response; around them runs
+// a fixed-point iteration on the air's pull gamma J^T s: given s, the contacts see the head
+// r - gamma J^T s and add their vacuum response delta; then s = (1 + gamma J J^T)^{-1} J (r + delta)
+// and w = r + delta - gamma J^T s = A^{-1} (r + delta) exactly. The iteration is a contraction
+// (the contact forces fall as the head rises; rate below gamma |J J^T| / (1 + gamma |J J^T|)),
+// and stops when the pull changes by less than round-off. The last trial's forces are what the
+// head, its air and the contacts all see: at the fixed point the energy identity holds; past
+// the cap (counted) the mismatch is the last change of the pull.
+
+#include "AirBox.h"
+#include "DrumConfig.h"
+#include "HeadEmbedding.h"
+#include "Membrane.h"
+
+#include <array>
+#include <limits>
+#include <memory>
+#include <vector>
+
+namespace snaresim
+{
+
+struct JointSolveResult
+{
+    int trials = 0;        // contact solves this step (1 when the contacts exert no force)
+    bool capped = false;   // stopped at maxTrials before the pull settled
+};
+
+class DrumAir
+{
+public:
+    static constexpr int maxTrials = 100;
+    static constexpr double tolerance = 1.0e-15;       // change of the pull / max |w| over the head
+    static constexpr double stallTolerance = 1.0e-12;  // stop when the change stops falling below this
+
+    DrumAir() = default; // no air box: inactive, energy 0
+    DrumAir(const DrumAir&) = delete;
+    DrumAir& operator=(const DrumAir&) = delete;
+
+    // The air box of cfg around batter and carry (both must outlive it). Throws std::invalid_argument.
+    void build(const DrumConfig& cfg, Membrane& batter, Membrane& carry);
+    bool active() const { return box != nullptr; }
+
+    const AirBox& air() const { return *box; }
+    const HeadEmbedding& batterEmbedding() const { return *top; }
+    const HeadEmbedding& carryEmbedding() const { return *bottom; }
+
+    // The air's own update (eq. 25), before the heads' free updates are coupled.
+    void computeFree() { box->computeNext(); }
+
+    // One head with its air and its contacts (after every free update): trial() solves the
+    // contacts from the free state and writes the head's w^{n+1}; restore() puts the contacts'
+    // own state (mallets' z, wires' u, ...) back to the free state for another trial.
+    template <class Trial, class Restore>
+    JointSolveResult solveBatter(Trial&& trial, Restore&& restore) { return solve(*top, *batterHead, batterSaved, trial, restore); }
+    template <class Trial, class Restore>
+    JointSolveResult solveCarry(Trial&& trial, Restore&& restore) { return solve(*bottom, *carryHead, carrySaved, trial, restore); }
+
+    // The pressure microphones rho_a dt+ Psi at n+1/2 (after both heads are solved).
+    void listen();
+    int numMics() const { return micCount; }
+    const AirPoint& micPoint(int i) const { return points[(size_t) i]; }
+    double micPressure(int i) const { return pressures[(size_t) i]; }
+
+    // Call after a head's coefficients change (its sigma0 enters the solve); allocates.
+    void refresh();
+
+    double energy() const { return box ? box->energy() : 0.0; }
+    double stepLoss() const { return box ? box->stepLoss() : 0.0; }
+    void advance() { box->advance(); }
+    void clear();
+
+private:
+    template <class Trial, class Restore>
+    JointSolveResult solve(HeadEmbedding& e, Membrane& head, std::vector<double>& saved, Trial& trial, Restore& restore)
+    {
+        JointSolveResult result;
+        e.solveFree();
+        double sum = 0.0;
+        head.saveNext(saved, sum);
+        double last = std::numeric_limits<double>::infinity();
+        for (;;)
+        {
+            ++result.trials;
+            trial();
+            const double change = e.correct(), scale = e.scale();
+            if (change <= tolerance * scale || (change >= last && change <= stallTolerance * scale))
+                break;
+            if (result.trials >= maxTrials)
+            {
+                result.capped = true;
+                break;
+            }
+            last = change;
+            head.restoreNext(saved, sum);
+            e.retry();
+            restore();
+        }
+        e.finish(); // eq. (8) with the final w^{n+1}
+        return result;
+    }
+
+    std::unique_ptr<AirBox> box;
+    std::unique_ptr<HeadEmbedding> top, bottom;
+    Membrane* batterHead = nullptr;
+    Membrane* carryHead = nullptr;
+    std::vector<double> batterSaved, carrySaved;
+    std::array<AirPoint, DrumAirSpec::maxMics> points {};
+    std::array<double, DrumAirSpec::maxMics> pressures {};
+    int micCount = 0;
+};
+
+} // namespace snaresim
