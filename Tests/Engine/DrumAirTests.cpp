@@ -2,6 +2,7 @@
 // heads' contacts solved jointly with their air, passivity with losses, the heads' (0,1) pair
 // through the air, the paper's section 5.2 in the box, and the config's checks.
 
+#include "ModePairs.h"
 #include "SpectrumPeaks.h"
 #include "TestDrums.h"
 
@@ -56,4 +57,240 @@ TEST_CASE("the whole drum in a lossless, reflecting air box conserves energy to 
     CHECK(airPeak > 1e-6 * e0); // the air takes part
     CHECK(st.airCapped == 0);
     CHECK(drift < 1e-11);
+}
+
+TEST_CASE("the drum in an absorbing, lossy air box never gains energy from one step to the next", "[drum][airbox][energy]")
+{
+    DrumConfig cfg = inAirBox(test::wholeDrum()); // the default losses, sigma_a = 2e-6 m, absorbing walls
+    REQUIRE(cfg.air.walls == AirWalls::absorbing);
+    REQUIRE(cfg.air.sigma_m > 0.0);
+    Drum drum(cfg);
+    drum.setEnergyTracking(true);
+    drum.strike(5.0, 0.3, 0.0);
+    const double e0 = drum.energy().total(), b0 = drum.energy().balance();
+    double previous = e0, worstRise = -1.0, drift = 0.0, airLoss = 0.0;
+    for (int n = 0; n < 4000; ++n)
+    {
+        drum.step();
+        const double e = drum.energy().total();
+        worstRise = std::max(worstRise, (e - previous) / e0);
+        drift = std::max(drift, std::abs(drum.energy().balance() - b0) / e0);
+        airLoss += drum.airBox().stepLoss();
+        previous = e;
+    }
+    std::printf("air box, absorbing walls, losses on: largest rise from one step to the next %.3g of the strike's energy; "
+                "balance varies by %.3g; the air's losses took %.3g J (%.3g of it)\n",
+                worstRise, drift, airLoss, airLoss / e0);
+    CHECK(worstRise <= 1e-14);
+    CHECK(drift < 1e-11);
+    CHECK(airLoss > 0.0);
+}
+
+TEST_CASE("the air box couples the heads: their (0,1) in-phase and anti-phase pair beside the cavity's", "[drum][airbox][modes]")
+{
+    DrumConfig cfg = test::wholeDrum();
+    cfg.snares.engaged = false;
+    cfg.cavity.gridShellDepth_m = 0.05; // the heads' grids of the cavity test
+    DrumConfig cavity = cfg;
+    cavity.cavity.model = AirModel::cavity;
+    const test::ModePair inCavity = test::measuredPairs(cavity.lossless(), {});
+    const test::ModePair inBox = test::measuredPairs(inAirBox(cfg).lossless(), {});
+    DrumConfig open = inAirBox(cfg).lossless();
+    open.air.walls = AirWalls::absorbing; // the box's own modes damped
+    // the in-phase mode radiates and is damped (the strongest in-phase peak); the anti-phase one within 5 %
+    const test::ModePair inOpenBox = test::measuredPairs(open, { 0.0, inBox.antiPhase });
+    std::printf("(0,1) pair, 14 cm shell: cavity %.1f / %.1f Hz; air box 0.6 m, reflecting walls %.1f / %.1f Hz; "
+                "absorbing walls %.1f / %.1f Hz (in phase / anti-phase)\n",
+                inCavity.inPhase, inCavity.antiPhase, inBox.inPhase, inBox.antiPhase, inOpenBox.inPhase, inOpenBox.antiPhase);
+    // The air inside the shell is a spring between the heads, so the anti-phase mode lies above
+    // the in-phase one; the air around them adds mass, so the in-phase mode is not above the
+    // cavity's (which has no outside air).
+    for (const auto& p : { inBox, inOpenBox })
+    {
+        CHECK(p.inPhase > 100.0);
+        CHECK(p.antiPhase > 1.2 * p.inPhase);
+        CHECK(p.inPhase <= 1.02 * inCavity.inPhase);
+    }
+}
+
+namespace
+{
+struct SnareTimes
+{
+    double lowest_ms = 0.0, lowestMean_mm = 0.0; // the wires' mean at its lowest (first 25 ms)
+    double left_ms = 0.0;    // every point has left the head (after the first contact)
+    double back_ms = 0.0;    // first contact after every point has left the head (after the first contact)
+    double clean_ms = 0.0;   // first contact after at least 1 ms with none (after the first contact)
+    int points = 0;
+};
+
+// The paper's section 5.2: 7 wires, M = 0.028 kg at 5 m/s, lossless, Newton, grids at the bound.
+SnareTimes section52(AirModel model)
+{
+    ParameterSet p;
+    p.set(ParamId::snareCount, 7.0);
+    p.set(ParamId::strikeSpeedMax, 5.0);
+    p.set(ParamId::malletMass, 0.028);
+    p.set(ParamId::gridCoarseness, 1.0);
+    p.set(ParamId::snareSolver, 1.0);
+    DrumConfig cfg = makeDrumConfig(p, 44100.0).lossless();
+    cfg.cavity.model = model;
+    Drum drum(cfg);
+    drum.playNote(38, 127); // as the renderer's --hit 0:127: the main strike at strike_speed_max
+    const auto& wires = drum.snareWires();
+    const int M = wires.intervals();
+    SnareTimes t;
+    t.points = wires.count() * (M - 1);
+    double lowest = 0.0;
+    bool touched = false, left = false;
+    int quietSteps = 0;
+    const int steps = (int) std::lround(0.025 * cfg.sampleRate_Hz);
+    for (int n = 1; n <= steps; ++n)
+    {
+        drum.step();
+        const double ms = 1e3 * n / cfg.sampleRate_Hz;
+        double mean = 0.0;
+        for (int i = 0; i < wires.count(); ++i)
+            for (int l = 0; l <= M; ++l)
+                mean += wires.uNow[(size_t) (i * (M + 1) + l)];
+        mean /= wires.count() * (M + 1);
+        if (mean < lowest)
+        {
+            lowest = mean;
+            t.lowest_ms = ms;
+        }
+        const int touching = drum.solverStats().snareContacts;
+        if (touching == 0)
+        {
+            if (touched && ! left)
+                t.left_ms = ms;
+            left = left || touched;
+            quietSteps += touched ? 1 : 0;
+        }
+        else
+        {
+            touched = true;
+            if (left && t.back_ms == 0.0)
+                t.back_ms = ms;
+            if (quietSteps >= 0.001 * cfg.sampleRate_Hz && t.clean_ms == 0.0)
+                t.clean_ms = ms;
+            quietSteps = 0;
+        }
+    }
+    t.lowestMean_mm = 1e3 * lowest;
+    return t;
+}
+} // namespace
+
+TEST_CASE("the paper's section 5.2 in the air box: when the wires swing down and hit the carry head", "[drum][airbox][snares]")
+{
+    const SnareTimes cavity = section52(AirModel::cavity);
+    const SnareTimes box = section52(AirModel::airbox);
+    std::printf("section 5.2 (%d wire points): paper: lowest 6 ms, hit about 9 ms (0 ms: none in 25 ms)\n"
+                "  cavity:  wires' mean lowest at %.2f ms (%.3f mm); all off the head %.2f ms, back on it %.2f ms; "
+                "first hit after 1 ms apart %.2f ms\n"
+                "  air box: wires' mean lowest at %.2f ms (%.3f mm); all off the head %.2f ms, back on it %.2f ms; "
+                "first hit after 1 ms apart %.2f ms\n",
+                box.points, cavity.lowest_ms, cavity.lowestMean_mm, cavity.left_ms, cavity.back_ms, cavity.clean_ms,
+                box.lowest_ms, box.lowestMean_mm, box.left_ms, box.back_ms, box.clean_ms);
+    // The sequence happens in both: the wires swing down, leave the head and come back.
+    for (const auto& t : { cavity, box })
+    {
+        CHECK(t.lowest_ms > 1.0);
+        CHECK(t.lowestMean_mm < 0.0);
+        CHECK(t.left_ms > 0.0);
+        CHECK(t.back_ms > t.left_ms);
+    }
+}
+
+TEST_CASE("the air microphones hear the strike, and the defaults are a top, a bottom and a far mic inside the box", "[drum][airbox][mics]")
+{
+    DrumConfig cfg = inAirBox(test::wholeDrum());
+    Drum drum(cfg);
+    REQUIRE(drum.numAirMics() == 3);
+    const auto& box = drum.airBox();
+    const double H = cfg.cavity.shellDepth_m;
+    CHECK(box.micPoint(0).z_m > 0.5 * H);  // above the batter
+    CHECK(box.micPoint(1).z_m < -0.5 * H); // under the carry head
+    CHECK(std::hypot(box.micPoint(2).x_m, box.micPoint(2).z_m - 0.5 * H) == Approx(0.25).epsilon(0.05));
+    drum.strike(3.0, 0.3, 0.0);
+    double peak[3] = {};
+    for (int n = 0; n < 600; ++n)
+    {
+        drum.step();
+        for (int i = 0; i < 3; ++i)
+            peak[i] = std::max(peak[i], std::abs(drum.airMicPressure(i)));
+        CHECK(drum.lastSignals().far_Pa == drum.airMicPressure(2));
+    }
+    std::printf("air mics, 3 m/s strike: peak |p| top %.3g Pa, bottom %.3g Pa, far %.3g Pa\n", peak[0], peak[1], peak[2]);
+    CHECK(peak[0] > peak[2]); // nearer is louder
+    for (double p : peak)
+        CHECK((p > 1e-3 && std::isfinite(p)));
+
+    DrumConfig one = cfg;
+    one.air.numMics = 1;
+    one.air.mics[0] = { 0.0, 0.0, 0.2 };
+    Drum single(one);
+    CHECK(single.numAirMics() == 1);
+    CHECK(single.airBox().micPoint(0).z_m == 0.2);
+}
+
+TEST_CASE("air box configs that cannot work throw std::invalid_argument with a readable message", "[drum][airbox][config]")
+{
+    const DrumConfig good = inAirBox(test::wholeDrum());
+    REQUIRE_NOTHROW(good.validate());
+    auto rejects = [](DrumConfig c, const std::string& words) {
+        try
+        {
+            Drum drum(c);
+            FAIL("accepted; expected a message about: " << words);
+        }
+        catch (const std::invalid_argument& e)
+        {
+            INFO("message: " << e.what());
+            CHECK(std::string(e.what()).find(words) != std::string::npos);
+        }
+    };
+    DrumConfig c = good;
+    c.air.size_m = { 0.3, 0.6, 0.6 }; // narrower than the drum
+    rejects(c, "does not hold the drum");
+    c = good;
+    c.air.size_m = { 0.6, 0.6, 0.16 }; // the shell (0.14 m) with no air beyond the heads
+    rejects(c, "does not hold the drum");
+    c = good;
+    c.air.size_m = { 0.0, 0.0, 0.0 };
+    c.air.margin_m = 0.0; // the drum's own extent: no air around it
+    rejects(c, "does not hold the drum");
+    c = good;
+    c.air.gridCoarseness = 0.5;
+    rejects(c, "stability bound (eq. 41)");
+    c = good;
+    c.air.sigma_m = -1e-6;
+    rejects(c, "sigma_a");
+    c = good;
+    c.air.threads = 0;
+    rejects(c, "threads");
+    c = good;
+    c.air.numMics = 1;
+    c.air.mics[0] = { 0.0, 0.0, 0.5 }; // above the 0.6 m box
+    rejects(c, "inside the air box");
+    c = good;
+    c.air.numMics = 9;
+    rejects(c, "air microphones");
+    c = good;
+    c.air.size_m = { 20.0, 20.0, 20.0 };
+    rejects(c, "too many points");
+
+    // A box given by its margin: the drum plus 0.1 m of air on every side.
+    c = good;
+    c.air.size_m = { 0.0, 0.0, 0.0 };
+    c.air.margin_m = 0.1;
+    CHECK(c.airBoxSpec().size_m[0] == Approx(2 * 0.1778 + 0.2));
+    CHECK(c.airBoxSpec().size_m[2] == Approx(c.cavity.shellDepth_m + 0.2));
+    CHECK_NOTHROW(c.validate());
+
+    // lossless(): reflecting walls, no sigma_a
+    const DrumConfig l = good.lossless();
+    CHECK(l.air.walls == AirWalls::reflecting);
+    CHECK(l.air.sigma_m == 0.0);
 }
