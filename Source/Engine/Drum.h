@@ -35,6 +35,7 @@ struct SolverStats
     double maxSnarePenetration_m = 0.0; // largest xi since resetStats()
     int maxAirTrials = 0;       // air box: most contact trials of one head's joint solve (DrumAir.h)
     long airCapped = 0;         // air box: joint solves stopped at their cap
+    long airTrials = 0;         // air box: contact trials of both heads since resetStats()
 };
 
 enum class Mic

@@ -12,15 +12,17 @@
 // r - gamma J^T s and add their vacuum response delta; then s = (1 + gamma J J^T)^{-1} J (r + delta)
 // and w = r + delta - gamma J^T s = A^{-1} (r + delta) exactly. The iteration is a contraction
 // (the contact forces fall as the head rises; rate below gamma |J J^T| / (1 + gamma |J J^T|)),
-// and stops when the pull changes by less than round-off. The last trial's forces are what the
-// head, its air and the contacts all see: at the fixed point the energy identity holds; past
-// the cap (counted) the mismatch is the last change of the pull.
+// and stops when the pull changes by less than round-off; where it stops contracting (a contact
+// switching on and off between trials) the pull the contacts see next is damped. The last
+// trial's forces are what the head, its air and the contacts all see: at the fixed point the
+// energy identity holds; past the cap (counted) the mismatch is the last change of the pull.
 
 #include "AirBox.h"
 #include "DrumConfig.h"
 #include "HeadEmbedding.h"
 #include "Membrane.h"
 
+#include <algorithm>
 #include <array>
 #include <limits>
 #include <memory>
@@ -87,7 +89,7 @@ private:
         e.solveFree();
         double sum = 0.0;
         head.saveNext(saved, sum);
-        double last = std::numeric_limits<double>::infinity();
+        double last = std::numeric_limits<double>::infinity(), omega = 1.0;
         for (;;)
         {
             ++result.trials;
@@ -100,9 +102,11 @@ private:
                 result.capped = true;
                 break;
             }
+            if (change >= last) // not contracting (a contact switching on and off): damp
+                omega = std::max(0.5 * omega, 1.0 / 64.0);
             last = change;
             head.restoreNext(saved, sum);
-            e.retry();
+            e.retry(omega);
             restore();
         }
         e.finish(); // eq. (8) with the final w^{n+1}

@@ -55,7 +55,7 @@ HeadEmbedding::HeadEmbedding(AirBox& a, Membrane& m, double z, double cx, double
     J.setFromTriplets(t.begin(), t.end());
     Jt = J.transpose();
     const auto na = (Eigen::Index) below.size(), nm = (Eigen::Index) support.size();
-    for (auto* v : { &wFree, &wPrev, &r, &pull, &base, &w, &jts })
+    for (auto* v : { &wFree, &wPrev, &r, &pull, &base, &w, &jts, &seen })
         v->setZero(nm);
     for (auto* v : { &y, &dv, &s, &sNew, &jr })
         v->setZero(na);
@@ -118,6 +118,8 @@ void HeadEmbedding::solveFree()
     pull *= gamma;
     w.noalias() = r - pull;
     base = w;
+    seen = pull;
+    fresh = true;
     wScale = 0.0;
     for (size_t j = 0; j < nm; ++j)
     {
@@ -137,7 +139,7 @@ double HeadEmbedding::correct()
         wFree[(Eigen::Index) j] = wj - base[(Eigen::Index) j]; // delta
         moved = moved || wj != base[(Eigen::Index) j];
     }
-    if (! moved)
+    if (! moved && fresh) // no force on the head: solveFree's w stands
     {
         w = base;
         return 0.0;
@@ -150,7 +152,7 @@ double HeadEmbedding::correct()
     for (size_t j = 0; j < nm; ++j)
     {
         const double p = gamma * jts[(Eigen::Index) j];
-        change = std::max(change, std::abs(p - pull[(Eigen::Index) j]));
+        change = std::max(change, std::abs(p - seen[(Eigen::Index) j])); // what the trial saw against the exact pull
         pull[(Eigen::Index) j] = p;
         const double wj = wFree[(Eigen::Index) j] - p;
         w[(Eigen::Index) j] = wj;
@@ -160,9 +162,11 @@ double HeadEmbedding::correct()
     return change;
 }
 
-void HeadEmbedding::retry()
+void HeadEmbedding::retry(double omega)
 {
-    base.noalias() = r - pull;
+    fresh = false;
+    seen += omega * (pull - seen);
+    base.noalias() = r - seen;
     for (size_t j = 0; j < support.size(); ++j)
         head.setNextAt(support[j], base[(Eigen::Index) j]);
 }

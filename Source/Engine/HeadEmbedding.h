@@ -42,14 +42,16 @@ public:
     //   correct():   after the coupling changed w^{n+1} by delta (its vacuum response, on top of
     //                the last retry()/solveFree() value), s = (1 + gamma J J^T)^{-1} J (r + delta)
     //                and w^{n+1} = r + delta - gamma J^T s, exactly A^{-1} (r + delta); returns
-    //                the largest change of gamma J^T s over the head (m), 0 when delta = 0;
-    //   retry():     w^{n+1} = r - gamma J^T s, the head as the coupling should see it before
-    //                its forces, for another trial with the latest s (the caller restores the
+    //                the largest difference between that pull gamma J^T s and the one the trial
+    //                saw (m): the contacts' mismatch; 0 when the first trial exerts no force;
+    //   retry(omega): w^{n+1} = r - P, the head as the coupling should see it before its
+    //                forces, for another trial, P = the last pull gamma J^T s moved by omega
+    //                (0 < omega <= 1) of the way from the one before (the caller restores the
     //                nodes outside J's support);
     //   finish():    eq. (8) with the final w^{n+1}: adds the head's velocity to the air.
     void solveFree();
     double correct();
-    void retry();
+    void retry(double omega = 1.0);
     void finish();
     // Largest |w^{n+1}| over J's support after solveFree(): the scale of correct()'s change.
     double scale() const { return wScale; }
@@ -74,8 +76,10 @@ private:
     Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
     double alpha = 0, beta = 0, ratio = 0, gamma = 0;
     double wScale = 0;
+    bool fresh = false; // no retry() since solveFree()
     Eigen::VectorXd wFree, wPrev, r, y, jr, dv; // work vectors
     Eigen::VectorXd s, sNew, pull, base, w, jts; // air-side vector, gamma J^T s, r - gamma J^T s, w^{n+1}
+    Eigen::VectorXd seen;                        // the pull the last trial saw
 };
 
 } // namespace snaresim

@@ -51,8 +51,8 @@ TEST_CASE("the whole drum in a lossless, reflecting air box conserves energy to 
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const auto& st = drum.solverStats();
     std::printf("air box, %s, 20 wires: relative energy variation %.3g over %d steps; air's largest energy %.3g J "
-                "(%.2g of the strike's); most contact trials per head and step %d, capped %ld; psi resets removed %.3g; %.1f s\n",
-                nameOf(cfg.snares.scheme), drift, steps, airPeak, airPeak / e0, st.maxAirTrials, st.airCapped,
+                "(%.2g of the strike's); contact trials per head and step: most %d, mean %.2f, capped %ld; psi resets removed %.3g; %.1f s\n",
+                nameOf(cfg.snares.scheme), drift, steps, airPeak, airPeak / e0, st.maxAirTrials, st.airTrials / (2.0 * steps), st.airCapped,
                 drum.energy().dissipated_J / e0, seconds);
     CHECK(airPeak > 1e-6 * e0); // the air takes part
     CHECK(st.airCapped == 0);
