@@ -260,7 +260,7 @@ DrumConfig mapParameters(const ParameterSet& p, double sampleRate_Hz) noexcept
     c.snares.scheme = p.get(ParamId::snareSolver) >= 0.5 ? CollisionScheme::newton : CollisionScheme::quadratised;
     c.cavity.shellDepth_m = p.get(ParamId::shellDepth);
     c.cavity.gridShellDepth_m = spec(ParamId::shellDepth).minValue;
-    c.cavity.model = p.get(ParamId::airModel) >= 0.5 ? AirModel::cavity : AirModel::none;
+    c.cavity.model = static_cast<AirModel>(std::lround(p.get(ParamId::airModel))); // none, cavity, airbox: the choices in order
 
     c.strikeRadius_frac = p.get(ParamId::strikePosition);
     c.strikeSpeedMax_m_per_s = p.get(ParamId::strikeSpeedMax);

@@ -151,13 +151,14 @@ struct GridShape
 {
     int batterNodes, carryNodes, wireIntervals, contactPoints;
     CollisionScheme scheme;
+    AirModel air;
     bool operator==(const GridShape&) const = default;
 };
 
 GridShape shapeOf(const Drum& d)
 {
     return { d.batter().grid().numInterior(), d.carry().grid().numInterior(), d.snareWires().intervals(),
-             d.snareContact().numPoints(), d.config().snares.scheme };
+             d.snareContact().numPoints(), d.config().snares.scheme, d.config().cavity.model };
 }
 } // namespace
 
@@ -203,7 +204,7 @@ TEST_CASE("a change the schema says rebuilds the model changes the grids or the 
         if (s.needs == ChangeNeeds::newGrid)
             CHECK(gridsDiffer);
         else
-            CHECK(moved.scheme != base.scheme);
+            CHECK((moved.scheme != base.scheme || moved.air != base.air));
         ++checked;
     }
     CHECK(checked > 0);
