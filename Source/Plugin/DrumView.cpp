@@ -75,6 +75,14 @@ DrumView::DrumView (EditorLookAndFeel& lookToUse) : look (lookToUse)
     setDescription ("Batter and carry heads with the snare wires");
 }
 
+void DrumView::setNotice (const juce::String& text)
+{
+    if (text == notice)
+        return;
+    notice = text;
+    repaint();
+}
+
 void DrumView::update (const DrumSnapshot& snapshot)
 {
     shown = snapshot;
@@ -192,7 +200,14 @@ void DrumView::paint (juce::Graphics& g)
     g.drawFittedText (shown.snaresEngaged || ! hasSnapshot ? "Carry head + snare wires" : "Carry head (snares off)",
                       captionFor (carryDisc), juce::Justification::centred, 1);
 
-    if (! hasSnapshot)
+    if (notice.isNotEmpty())
+    {
+        g.setColour (Palette::accent);
+        g.setFont (look.font (11.5f));
+        g.drawFittedText (notice, getLocalBounds().withHeight (look.panelTitleHeight()).withTrimmedRight (look.pxi (12.0f)),
+                          juce::Justification::centredRight, 1);
+    }
+    else if (! hasSnapshot)
     {
         g.setColour (Palette::textFaint);
         g.setFont (look.font (11.5f));

@@ -29,6 +29,10 @@ public:
     // The current colour scale: displacement shown at full colour (m).
     float getColourScale() const noexcept { return headScale; }
 
+    // A line over the picture (empty: none), e.g. that the air box plays offline only.
+    void setNotice (const juce::String& text);
+    const juce::String& getNotice() const noexcept { return notice; }
+
     // True once a snapshot has been shown.
     bool hasShownSnapshot() const noexcept { return hasSnapshot; }
 
@@ -53,6 +57,7 @@ private:
 
     DrumSnapshot shown;
     bool hasSnapshot = false;
+    juce::String notice;
 
     // Slowly decaying maxima: the colour scale of the heads and the drawing scale of the wires.
     float headScale = 0.0f;

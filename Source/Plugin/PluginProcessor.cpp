@@ -5,7 +5,10 @@
 #include "PluginState.h"
 #include "Presets.h"
 
+#include "DrumConfig.h"
+
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 //==============================================================================
@@ -41,7 +44,22 @@ snaresim::ParameterSet SnareSimAudioProcessor::currentParameters() const
         if (const auto* raw = rawParameters[static_cast<std::size_t> (spec.id)])
             params.setClamped (spec.id, (double) raw->load());
 
+    if (airBoxHeldBack())
+        params.setClamped (snaresim::ParamId::airModel, (double) snaresim::AirModel::cavity);
+
     return params;
+}
+
+bool SnareSimAudioProcessor::airBoxHeldBack() const noexcept
+{
+    const auto* air = rawParameters[static_cast<std::size_t> (snaresim::ParamId::airModel)];
+    return ! offline.load() && air != nullptr && std::lround (air->load()) == (long) snaresim::AirModel::airbox;
+}
+
+void SnareSimAudioProcessor::setNonRealtime (bool isNonRealtime) noexcept
+{
+    AudioProcessor::setNonRealtime (isNonRealtime);
+    offline.store (isNonRealtime);
 }
 
 //==============================================================================

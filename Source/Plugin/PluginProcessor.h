@@ -87,6 +87,12 @@ public:
     // to the default parameter set.
     bool usedFallbackParameters() const noexcept { return player.usedFallbackParameters(); }
 
+    // The air box is far slower than real time (BENCHMARKS.md): in real time an air model set
+    // to it plays the cavity instead, and the editor says so; a host's offline render
+    // (setNonRealtime) plays the air box.
+    bool airBoxHeldBack() const noexcept;
+    void setNonRealtime (bool isNonRealtime) noexcept override;
+
     // Models installed by the audio thread so far (prepareToPlay and background builds).
     int getModelSwapCount() const noexcept { return player.modelSwapCount(); }
 
@@ -106,6 +112,7 @@ private:
     std::array<snaresim::PlayerEvent, 1024> events {};     // one block's MIDI, translated (audio thread)
 
     // --- programs --------------------------------------------------------------------------
+    std::atomic<bool> offline { false };        // the host renders offline (setNonRealtime)
     std::atomic<int> currentProgram { 0 };
     std::atomic<int> programToApply { -1 };     // set inside processBlock, applied on the message thread
     std::atomic<juce::Thread::ThreadID> processingThread { nullptr };   // while in processBlock

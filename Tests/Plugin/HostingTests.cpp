@@ -164,13 +164,17 @@ snaresim::ParameterSet asFloats (const snaresim::ParameterSet& values)
     return held;
 }
 
-// What the plug-in must play: the engine's drum built from these values (makeDrumConfig),
-// note 38 at `velocity` before the step of sample `noteAt`, the mix as float with |x| < 1e-30
-// written as 0 (the processor's output guard), denormals flushed as in processBlock.
+// What the plug-in must play in real time: the engine's drum built from these values
+// (makeDrumConfig; an air model set to the air box plays the cavity, as the plug-in does in
+// real time), note 38 at `velocity` before the step of sample `noteAt`, the mix as float with
+// |x| < 1e-30 written as 0 (the processor's output guard), denormals flushed as in processBlock.
 std::vector<float> engineRender (const snaresim::ParameterSet& values, double rate, int numSamples, int noteAt, int velocity)
 {
     const juce::ScopedNoDenormals noDenormals;
-    snaresim::Drum drum (snaresim::makeDrumConfig (values, rate));
+    auto playing = values;
+    if (playing.get (ParamId::airModel) == (double) snaresim::AirModel::airbox)
+        playing.set (ParamId::airModel, (double) snaresim::AirModel::cavity);
+    snaresim::Drum drum (snaresim::makeDrumConfig (playing, rate));
     std::vector<float> out;
     for (int n = 0; n < numSamples; ++n)
     {

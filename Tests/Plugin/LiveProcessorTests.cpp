@@ -145,9 +145,13 @@ TEST_CASE ("continuous parameters apply live and smoothly while the drum rings",
     CHECK (proc.getModelSwapCount() == swaps);
 
     // Toggles apply at once.
-    set (proc, ParamId::airModel, 0.0);
     set (proc, ParamId::carryFollows, 1.0);
     render (proc, 256, 256);
+    CHECK (proc.getDrum()->config().carry.tension_N_per_m == Approx (std::clamp (5000.0 * 2060.0 / 3050.0, 800.0, 5000.0)));
+
+    // The air model is another model (ChangeNeeds::newModel): built in the background.
+    set (proc, ParamId::airModel, 0.0);
+    REQUIRE (waitForModelSwaps (proc, swaps + 1));
     CHECK (proc.getDrum()->config().cavity.model == snaresim::AirModel::none);
     CHECK (proc.getDrum()->config().carry.tension_N_per_m == Approx (std::clamp (5000.0 * 2060.0 / 3050.0, 800.0, 5000.0)));
 }
@@ -568,4 +572,33 @@ TEST_CASE ("parameters, programs, state and the editor from the message thread w
     audio.join();
     CHECK (blocks >= 100);
     CHECK (bad == 0);
+}
+
+TEST_CASE ("the air box plays in a host's offline render, and in real time the cavity plays instead", "[processor][airbox]")
+{
+    SnareSimAudioProcessor proc;
+    prepare (proc, 48000.0, 256);
+    const int swaps = proc.getModelSwapCount();
+    set (proc, ParamId::airModel, (double) snaresim::AirModel::airbox);
+    render (proc, 256, 256);
+    // Real time: the air box is held back, the cavity plays, and the editor is told.
+    CHECK (proc.airBoxHeldBack());
+    CHECK (proc.currentParameters().get (ParamId::airModel) == (double) snaresim::AirModel::cavity);
+    CHECK (proc.getDrum()->config().cavity.model == snaresim::AirModel::cavity);
+    CHECK (proc.getModelSwapCount() == swaps);
+
+    // Offline: the air box is built and plays.
+    proc.setNonRealtime (true);
+    CHECK_FALSE (proc.airBoxHeldBack());
+    REQUIRE (waitForModelSwaps (proc, swaps + 1, 256, 120.0));
+    CHECK (proc.getDrum()->config().cavity.model == snaresim::AirModel::airbox);
+    const auto r = render (proc, 256, 1024, { { 0, note (100) } });
+    CHECK (r.allFinite);
+    CHECK (r.peak > 1.0e-4f);
+
+    // Back to real time: the cavity again.
+    proc.setNonRealtime (false);
+    CHECK (proc.airBoxHeldBack());
+    REQUIRE (waitForModelSwaps (proc, swaps + 2, 256, 120.0));
+    CHECK (proc.getDrum()->config().cavity.model == snaresim::AirModel::cavity);
 }

@@ -145,14 +145,15 @@ TEST_CASE ("processBlock never allocates", "[processor][realtime]")
 
     // A model swap: the new model is built in the background and installed, crossfaded and the
     // old one sent back, all without allocating on the audio thread.
+    // (The air model's changes above swapped models too.)
     set (proc, ParamId::snareCount, 7.0);
     const auto until = std::chrono::steady_clock::now() + std::chrono::seconds (30);
-    while (proc.getModelSwapCount() == swapsAtStart && std::chrono::steady_clock::now() < until)
+    while (proc.getDrum()->config().snares.count != 7 && std::chrono::steady_clock::now() < until)
     {
         processOne (announced, { { 0, note (100) } });
         std::this_thread::sleep_for (std::chrono::milliseconds (2));
     }
-    REQUIRE (proc.getModelSwapCount() == swapsAtStart + 1);
+    REQUIRE (proc.getModelSwapCount() > swapsAtStart);
     for (int i = 0; i < 20; ++i)
         processOne (announced, { { 0, note (100) } });
     CHECK (proc.getDrum()->config().snares.count == 7);

@@ -25,6 +25,12 @@ cleanup() {
 }
 trap cleanup EXIT
 
+# A JACK server that was killed leaves its shared memory behind, and after a few of them jackd
+# refuses to start ("Too many servers already active"). With no JACK server running, clear it.
+if ! pgrep -x jackd >/dev/null && ! pgrep -x jackdbus >/dev/null; then
+    rm -f /dev/shm/jack-shm-registry /dev/shm/jack_sem.* /dev/shm/jack_db-* /dev/shm/jack-[0-9]* 2>/dev/null || true
+fi
+
 jackd --no-realtime -d dummy -r 48000 -p 256 >"$work/jackd.log" 2>&1 &
 pids+=($!)
 jack_wait -w -t 10 >/dev/null 2>&1 || { echo "error: the JACK server did not start"; cat "$work/jackd.log"; exit 1; }
