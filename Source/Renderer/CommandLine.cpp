@@ -241,6 +241,63 @@ double parseSeconds(std::string_view text)
     return seconds;
 }
 
+// "X,Y,Z" in metres (or one number S when `cube`: S,S,S).
+Point3 parsePoint(std::string_view text, std::string_view option, bool cube)
+{
+    std::vector<std::string_view> parts;
+    for (std::string_view rest = text;;)
+    {
+        const auto comma = rest.find(',');
+        parts.push_back(rest.substr(0, comma));
+        if (comma == std::string_view::npos || parts.size() > 3)
+            break;
+        rest = rest.substr(comma + 1);
+    }
+    if (parts.size() != 3 && ! (cube && parts.size() == 1))
+        fail(std::string(option) + ": " + inQuotes(text) + " is not X,Y,Z in metres" + (cube ? " (or one size S)" : ""));
+    std::vector<double> v;
+    for (const auto part : parts)
+        v.push_back(parseNumber(part, option));
+    if (v.size() == 1)
+        return { v[0], v[0], v[0] };
+    return { v[0], v[1], v[2] };
+}
+
+Point3 parseAirMic(std::string_view text) { return parsePoint(text, "--air-mic", false); }
+
+Point3 parseBox(std::string_view text)
+{
+    const Point3 p = parsePoint(text, "--box", true);
+    if (p.x <= 0.0 || p.y <= 0.0 || p.z <= 0.0)
+        fail("--box: " + inQuotes(text) + " must be positive sizes in metres");
+    return p;
+}
+
+double parseBoxMargin(std::string_view text)
+{
+    const double m = parseNumber(text, "--box-margin");
+    if (m <= 0.0)
+        fail("--box-margin: " + inQuotes(text) + " must be greater than 0 (metres)");
+    return m;
+}
+
+Walls parseWalls(std::string_view text)
+{
+    if (text == "absorbing")
+        return Walls::absorbing;
+    if (text == "reflecting")
+        return Walls::reflecting;
+    fail("--walls: " + inQuotes(text) + " is not one of absorbing|reflecting");
+}
+
+int parseThreads(std::string_view text)
+{
+    const int n = parseInteger(text, "--threads");
+    if (n < 1 || n > 256)
+        fail("--threads: " + inQuotes(text) + " is outside 1..256");
+    return n;
+}
+
 std::filesystem::path parsePath(std::string_view text, std::string_view option)
 {
     if (text.empty())
@@ -468,6 +525,11 @@ CommandLine parseCommandLine(const std::vector<std::string>& args)
     options.once("--block-size", job.blockSize, parseBlockSize);
     options.once("--bench-repeat", job.benchRepeats, parseRepeats);
     options.once("--bench-scenario", job.benchScenario, parseScenario);
+    options.each("--air-mic", job.airMics, parseAirMic);
+    options.once("--walls", job.walls, parseWalls);
+    options.once("--box", job.boxSize, parseBox);
+    options.once("--box-margin", job.boxMargin, parseBoxMargin);
+    options.once("--threads", job.threads, parseThreads);
     options.parse();
 
     if (sampleRate)
@@ -524,20 +586,22 @@ Strikes:
 
 Output:
   -o, --output FILE     the WAV file to write: 32-bit float (required)
-  --mic top|bottom|far|mix|all
-                        the signal in the WAV (default mix): top = batter velocity at
-                        the top microphone, bottom = carry-head velocity at the bottom
-                        (snare-side) microphone, far = far-field pressure, mix = their
-                        weighted mix (the plug-in's output); all = four channels in the
-                        order top, bottom, far, mix
+  --mic top|bottom|far|mix|all|air
+                        the signal in the WAV (default mix; with --model airbox, air):
+                        top = batter velocity at the top microphone, bottom = carry-head
+                        velocity at the bottom (snare-side) microphone, far = far-field
+                        pressure (air box: the last air microphone), mix = their weighted
+                        mix (the plug-in's output); all = four channels in the order
+                        top, bottom, far, mix; air = the air box's microphones, one
+                        channel each in order (pressure, 0.005 per Pa)
   --seconds S           length in seconds, 0 < S <= 3600 (default: 2; with --midi, the
                         latest strike + 2). Strikes at or after the end are not played.
   --sample-rate HZ      whole number of Hz, 8000..384000 (default 48000)
   --energy-csv FILE     also write the energy ledger, one row per sample:
-                        time_s,batter_J,carry_J,mallets_J,snares_J,cavity_J,total_J,
-                        dissipated_J,injected_J,balance_J
-                        (total = the five components; balance = total + dissipated
-                        - injected, constant up to round-off)
+                        time_s, one column per term of the ledger (batter_J, carry_J,
+                        mallets_J, snares_J, cavity_J, airbox_J), total_J, dissipated_J,
+                        injected_J, balance_J (total = the terms' sum; balance = total
+                        + dissipated - injected, constant up to round-off)
   --energy-plot FILE    also write a PNG (1400 x 600): left, the normalised variation of
                         the energy balance (h^n - h^0) / h^0, h^0 = the total energy right
                         after the first strike; right, the energy of each component and
@@ -555,12 +619,25 @@ Output:
 
 Model:
   --preset NAME         start from a factory preset instead of the defaults
-  --model cavity|none   the air between the heads: cavity (the enclosed air couples the
-                        heads; the default) or none (heads uncoupled); sets air_model
-                        after the preset, before any --set
+  --model cavity|none|airbox
+                        the air: cavity (the enclosed air couples the heads; the
+                        default), none (heads uncoupled) or airbox (the paper's full
+                        model: the drum in a 3D box of air that radiates, far slower
+                        than real time); sets air_model after the preset, before any --set
+  --air-mic X,Y,Z       air box: a pressure microphone at X,Y,Z metres from the drum's
+                        centre (z up, the batter at +depth/2); repeatable, up to 8, one
+                        WAV channel each. None given: a close top mic 4 cm above the
+                        batter near the rim, a bottom mic under the snares, a far one
+  --walls absorbing|reflecting
+                        air box: the box's walls (default absorbing; --lossless:
+                        reflecting)
+  --box X,Y,Z | --box S air box: its size in metres (default 0.6 m cube), or
+  --box-margin M        the drum's extent plus M metres of air on every side
+  --threads N           air box: threads for the air update (default: all cores)
   --set ID=VALUE        set one parameter (after the preset and --model); repeatable.
-                        Integer, on/off and choice parameters take whole numbers only;
-                        a choice also takes its name (e.g. air_model=none). The snares:
+                        A number may carry a unit (shell_depth=120mm); integer, on/off
+                        and choice parameters take whole numbers only; on/off and choice
+                        parameters also take their names (snares_engaged=off). The snares:
                         snares_engaged (0 off, 1 on), snare_tension, snare_count,
                         carry_tension, shell_depth
   --lossless            switch every loss off (energy is then conserved); reports the

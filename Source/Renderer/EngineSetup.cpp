@@ -3,7 +3,10 @@
 #include "Errors.h"
 #include "Presets.h"
 
+#include <algorithm>
 #include <stdexcept>
+#include <thread>
+#include <utility>
 #include <string>
 
 namespace snaresim::render
@@ -48,12 +51,50 @@ ParameterSet makeParameters(const RenderJob& job)
     return params;
 }
 
+namespace
+{
+// The air box's options (--air-mic, --walls, --box, --box-margin, --threads) into the config.
+void applyAirOptions(const RenderJob& job, DrumConfig& config)
+{
+    const bool airBox = config.cavity.model == AirModel::airbox;
+    for (const auto& [given, option] : { std::pair { ! job.airMics.empty(), "--air-mic" }, { job.walls.has_value(), "--walls" },
+                                         { job.boxSize.has_value(), "--box" }, { job.boxMargin.has_value(), "--box-margin" },
+                                         { job.threads.has_value(), "--threads" } })
+        if (given && ! airBox)
+            throw UserError(std::string(option) + " applies to the air box only (--model airbox)");
+    if (! airBox)
+        return;
+    if (job.boxSize && job.boxMargin)
+        throw UserError("--box and --box-margin: give one or the other");
+
+    auto& air = config.air;
+    if ((int) job.airMics.size() > DrumAirSpec::maxMics)
+        throw UserError("--air-mic: at most " + std::to_string(DrumAirSpec::maxMics) + " air microphones");
+    for (const auto& p : job.airMics)
+        air.mics[(std::size_t) air.numMics++] = { p.x, p.y, p.z };
+    if (job.walls)
+        air.walls = *job.walls == Walls::reflecting ? AirWalls::reflecting : AirWalls::absorbing;
+    if (job.boxSize)
+        air.size_m = { job.boxSize->x, job.boxSize->y, job.boxSize->z };
+    if (job.boxMargin)
+    {
+        air.size_m = { 0.0, 0.0, 0.0 }; // sized from the drum and the margin
+        air.margin_m = *job.boxMargin;
+    }
+    air.threads = job.threads.value_or((int) std::max(1u, std::thread::hardware_concurrency()));
+}
+} // namespace
+
 DrumConfig makeConfig(const RenderJob& job, const ParameterSet& params)
 {
     try
     {
-        DrumConfig config = makeDrumConfig(params, job.sampleRate_Hz);
-        return job.lossless ? config.lossless() : config;
+        DrumConfig config = mapParameters(params, job.sampleRate_Hz);
+        applyAirOptions(job, config);
+        if (job.lossless)
+            config = config.lossless(); // with the air box: reflecting walls, sigma_a = 0
+        config.validate();
+        return config;
     }
     catch (const std::invalid_argument& e)
     {

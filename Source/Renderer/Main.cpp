@@ -112,20 +112,26 @@ void commitAll(const std::vector<AtomicFile*>& files)
     }
 }
 
-int render(const RenderJob& job)
+int render(const RenderJob& commandLineJob)
 {
     installInterruptHandlers(); // before any temporary file exists
-    checkDistinctFiles(job);
+    checkDistinctFiles(commandLineJob);
 
     // Inputs first: parameters, strikes, model (all cheap to reject).
-    const auto params = makeParameters(job);
-    const auto midiStrikes = job.midiFile ? readMidiStrikes(*job.midiFile) : std::vector<Strike> {};
-    const auto plan = makeRenderPlan(job, midiStrikes);
-    const auto config = makeConfig(job, params);
+    const auto params = makeParameters(commandLineJob);
+    const auto midiStrikes = commandLineJob.midiFile ? readMidiStrikes(*commandLineJob.midiFile) : std::vector<Strike> {};
+    const auto plan = makeRenderPlan(commandLineJob, midiStrikes);
+    const auto config = makeConfig(commandLineJob, params);
     auto drum = makeDrum(config);
 
+    // With the air box the WAV holds its air microphones unless --mic says otherwise.
+    RenderJob job = commandLineJob;
+    if (! job.mic && config.cavity.model == AirModel::airbox)
+        job.mic = MicOutput::air;
+    if (job.mic == MicOutput::air && drum->numAirMics() == 0)
+        throw UserError("--mic air: the air microphones are the air box's (--model airbox)");
     const auto mic = job.selectedMic();
-    const auto mics = micChannels(mic);
+    const auto mics = micChannels(mic, drum->numAirMics());
 
     // Then the outputs, before any rendering: a bad path fails here.
     AtomicFile wavFile(*job.output);

@@ -8,12 +8,13 @@ namespace snaresim::render
 namespace
 {
 
-constexpr std::array<std::pair<MicOutput, std::string_view>, 5> kNames { {
+constexpr std::array<std::pair<MicOutput, std::string_view>, 6> kNames { {
     { MicOutput::top, "top" },
     { MicOutput::bottom, "bottom" },
     { MicOutput::far, "far" },
     { MicOutput::mix, "mix" },
     { MicOutput::all, "all" },
+    { MicOutput::air, "air" },
 } };
 
 } // namespace
@@ -36,20 +37,27 @@ std::optional<MicOutput> findMic(std::string_view name)
 
 std::string_view micChoices()
 {
-    return "top|bottom|far|mix|all";
+    return "top|bottom|far|mix|all|air";
 }
 
-std::vector<Mic> micChannels(MicOutput mic)
+std::vector<Channel> micChannels(MicOutput mic, int numAirMics)
 {
     switch (mic)
     {
-        case MicOutput::top: return { Mic::top };
-        case MicOutput::bottom: return { Mic::bottom };
-        case MicOutput::far: return { Mic::far };
-        case MicOutput::mix: return { Mic::mix };
-        case MicOutput::all: return { Mic::top, Mic::bottom, Mic::far, Mic::mix };
+        case MicOutput::top: return { { Mic::top } };
+        case MicOutput::bottom: return { { Mic::bottom } };
+        case MicOutput::far: return { { Mic::far } };
+        case MicOutput::mix: return { { Mic::mix } };
+        case MicOutput::all: return { { Mic::top }, { Mic::bottom }, { Mic::far }, { Mic::mix } };
+        case MicOutput::air:
+        {
+            std::vector<Channel> channels;
+            for (int i = 0; i < numAirMics; ++i)
+                channels.push_back({ Mic::mix, i });
+            return channels;
+        }
     }
-    return { Mic::mix };
+    return { { Mic::mix } };
 }
 
 int analysedChannel(MicOutput mic)

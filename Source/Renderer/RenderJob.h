@@ -41,7 +41,8 @@ enum class MicOutput
     bottom,
     far,
     mix,
-    all
+    all,
+    air     // one channel per air microphone (air box; its default)
 };
 
 // --bench-scenario: the strikes a benchmark plays when no --hit / --midi is given.
@@ -51,6 +52,19 @@ enum class BenchScenario
 {
     standard,
     roll
+};
+
+// --walls: the air box's walls.
+enum class Walls
+{
+    absorbing,
+    reflecting
+};
+
+// A point in metres from the drum's centre (x, y in the batter's plane, z up along the axis).
+struct Point3
+{
+    double x = 0.0, y = 0.0, z = 0.0;
 };
 
 // One --set ID=VALUE (ID already resolved; the range is checked by ParameterSet::set).
@@ -83,6 +97,11 @@ struct RenderJob
     std::optional<BenchScenario> benchScenario;     // --bench-scenario (bench only)
     bool benchShort = false;                        // --bench-short (bench only)
     std::optional<int> benchRepeats;                // --bench-repeat (bench only, checked range)
+    std::vector<Point3> airMics;                    // --air-mic X,Y,Z (air box), in order
+    std::optional<Walls> walls;                     // --walls (air box; --lossless: reflecting)
+    std::optional<Point3> boxSize;                  // --box X,Y,Z or --box S (air box, metres)
+    std::optional<double> boxMargin;                // --box-margin M (air box, metres)
+    std::optional<int> threads;                     // --threads N (air box; default: all cores)
 
     MicOutput selectedMic() const { return mic.value_or(MicOutput::mix); }
     int selectedBlockSize() const { return blockSize.value_or(kDefaultBlockSize); }

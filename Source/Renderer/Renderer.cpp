@@ -95,7 +95,7 @@ struct Statistics
 } // namespace
 
 RenderStats renderDrum(std::unique_ptr<Drum> drumToPlay, const ParameterSet& params, const RenderPlan& plan,
-                       std::span<const Mic> mics, bool trackEnergy, const RenderSinks& sinks)
+                       std::span<const Channel> mics, bool trackEnergy, const RenderSinks& sinks)
 {
     using Clock = std::chrono::steady_clock;
 
@@ -132,8 +132,11 @@ RenderStats renderDrum(std::unique_ptr<Drum> drumToPlay, const ParameterSet& par
     int indexInBlock = 0;
     observer.after = [&](const Drum& drum) {
         for (std::size_t c = 0; c < numChannels; ++c)
-            if (mics[c] != Mic::mix)
-                blocks[c][(std::size_t) indexInBlock] = (float) drum.output(mics[c]);
+            if (mics[c].air >= 0)
+                blocks[c][(std::size_t) indexInBlock] = (float) (drum.config().outputGain * kAirMicGain_per_Pa
+                                                                 * drum.airMicPressure(mics[c].air));
+            else if (mics[c].mic != Mic::mix)
+                blocks[c][(std::size_t) indexInBlock] = (float) drum.output(mics[c].mic);
         if (trackEnergy)
             ledgers.push_back(drum.energy());
         if (sinks.state && sample >= sinks.stateFrom && sample < sinks.stateTo)
@@ -166,7 +169,7 @@ RenderStats renderDrum(std::unique_ptr<Drum> drumToPlay, const ParameterSet& par
 
         for (std::size_t c = 0; c < numChannels; ++c)
         {
-            if (mics[c] == Mic::mix)
+            if (mics[c] == Channel {})
                 std::copy_n(mixBlock.begin(), n, blocks[c].begin());
             channels[c] = std::span<const float>(blocks[c].data(), (std::size_t) n);
             statistics.addAudio(channels[c]);

@@ -4,6 +4,7 @@
 // ledger of every sample; on request, the drum itself after the steps of a range of samples)
 // to the callers' sinks. Measures the time spent in the engine only.
 
+#include "Microphones.h"
 #include "RenderPlan.h"
 
 #include "Drum.h"
@@ -73,9 +74,9 @@ struct RenderSinks
 };
 
 // Plays the plan on `drum` (built from `params`) through the real-time player, as the plug-in
-// plays it. mics: the signals to render, one channel each (drum.output(mic) after every step;
-// Mic::mix is the player's output).
+// plays it. mics: the signals to render, one channel each (Microphones.h: drum.output(mic) after
+// every step, Mic::mix the player's output, an air microphone's pressure at audio level).
 RenderStats renderDrum(std::unique_ptr<Drum> drum, const ParameterSet& params, const RenderPlan& plan,
-                       std::span<const Mic> mics, bool trackEnergy, const RenderSinks& sinks);
+                       std::span<const Channel> mics, bool trackEnergy, const RenderSinks& sinks);
 
 } // namespace snaresim::render

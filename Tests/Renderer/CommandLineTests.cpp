@@ -176,9 +176,9 @@ TEST_CASE("parameter values in --set: numbers, choice names, whole numbers where
 {
     CHECK(jobOf(playable({ "--set", "air_model=cavity" })).overrides.at(0).value == 1.0);
     CHECK(jobOf(playable({ "--set", "snares_engaged=+1" })).overrides.at(0).value == 1.0);
-    CHECK(errorOf(playable({ "--set", "air_model=bogus" })) == "--set air_model: 'bogus' is not one of 0 none, 1 cavity");
+    CHECK(errorOf(playable({ "--set", "air_model=bogus" })) == "--set air_model: 'bogus' is not one of 0 none, 1 cavity, 2 airbox");
     CHECK(errorOf(playable({ "--set", "air_model=0.5" }))
-          == "--set air_model=0.5: air_model takes one of 0 none, 1 cavity (the number or the name), not a fraction");
+          == "--set air_model=0.5: air_model takes one of 0 none, 1 cavity, 2 airbox (the number or the name), not a fraction");
     CHECK(errorOf(playable({ "--set", "snares_engaged=0.5" }))
           == "--set snares_engaged=0.5: snares_engaged takes 0 or 1, not a fraction");
     CHECK(errorOf(playable({ "--set", "mallet_mass=heavy" })) == "--set mallet_mass: 'heavy' is not a number");
@@ -259,4 +259,32 @@ TEST_CASE("the fuzzer's seed corpus: a job or a UserError, nothing else", "[rend
         ++files;
     }
     CHECK(files >= 6);
+}
+
+TEST_CASE("the air box's options: microphones, walls, box, margin, threads", "[renderer][command-line]")
+{
+    const auto job = jobOf(playable({ "--air-mic", "0.1,0,0.12", "--air-mic", "-0.2,0.05,-0.3", "--walls", "reflecting",
+                                      "--box", "0.7,0.6,0.8", "--box-margin", "0.1", "--threads", "2" }));
+    REQUIRE(job.airMics.size() == 2);
+    CHECK(job.airMics[0].x == 0.1);
+    CHECK(job.airMics[0].z == 0.12);
+    CHECK(job.airMics[1].x == -0.2);
+    CHECK(job.airMics[1].z == -0.3);
+    CHECK(job.walls == snaresim::render::Walls::reflecting);
+    REQUIRE(job.boxSize.has_value());
+    CHECK(job.boxSize->y == 0.6);
+    CHECK(job.boxMargin == 0.1);
+    CHECK(job.threads == 2);
+    const auto cube = jobOf(playable({ "--box", "0.5" })).boxSize;
+    REQUIRE(cube.has_value());
+    CHECK((cube->x == 0.5 && cube->y == 0.5 && cube->z == 0.5));
+
+    CHECK(errorOf(playable({ "--air-mic", "0.1,0" })) == "--air-mic: '0.1,0' is not X,Y,Z in metres");
+    CHECK(errorOf(playable({ "--air-mic", "0.1,0,0,4" })) == "--air-mic: '0.1,0,0,4' is not X,Y,Z in metres");
+    CHECK(errorOf(playable({ "--air-mic", "a,0,0" })) == "--air-mic: 'a' is not a number");
+    CHECK(errorOf(playable({ "--box", "0" })) == "--box: '0' must be positive sizes in metres");
+    CHECK(errorOf(playable({ "--box", "1,-1,1" })) == "--box: '1,-1,1' must be positive sizes in metres");
+    CHECK(errorOf(playable({ "--box-margin", "0" })) == "--box-margin: '0' must be greater than 0 (metres)");
+    CHECK(errorOf(playable({ "--walls", "open" })) == "--walls: 'open' is not one of absorbing|reflecting");
+    CHECK(errorOf(playable({ "--threads", "0" })) == "--threads: '0' is outside 1..256");
 }
