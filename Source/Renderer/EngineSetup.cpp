@@ -4,6 +4,7 @@
 #include "Presets.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <thread>
 #include <utility>
@@ -70,8 +71,15 @@ void applyAirOptions(const RenderJob& job, DrumConfig& config)
     auto& air = config.air;
     if ((int) job.airMics.size() > DrumAirSpec::maxMics)
         throw UserError("--air-mic: at most " + std::to_string(DrumAirSpec::maxMics) + " air microphones");
+    const double R = config.batter.radius_m, H = config.cavity.shellDepth_m;
     for (const auto& p : job.airMics)
+    {
+        if (std::hypot(p.x, p.y) <= R && std::abs(p.z) <= 0.5 * H)
+            throw UserError("--air-mic " + numberText(p.x) + "," + numberText(p.y) + "," + numberText(p.z)
+                            + ": inside the drum's shell (radius " + numberText(R) + " m, heads at z = +-" + numberText(0.5 * H)
+                            + " m); a microphone goes in the air around the drum");
         air.mics[(std::size_t) air.numMics++] = { p.x, p.y, p.z };
+    }
     if (job.walls)
         air.walls = *job.walls == Walls::reflecting ? AirWalls::reflecting : AirWalls::absorbing;
     if (job.boxSize)

@@ -132,6 +132,26 @@ TEST_CASE("bad input: a grid or sample rate the scheme cannot take", "[renderer]
                     "the model cannot be");
 }
 
+TEST_CASE("bad input: an air box that does not hold the drum, microphones outside it or in the shell, no threads", "[renderer][errors][airbox]")
+{
+    TempDir dir;
+    const std::vector<std::string> box { "--hit", "0:100", "--seconds", "0.01", "--sample-rate", "22050", "--model", "airbox" };
+    auto with = [&](std::vector<std::string> more) {
+        auto args = box;
+        args.insert(args.end(), more.begin(), more.end());
+        return args;
+    };
+    requireBadInput(dir, with({ "--box", "0.3" }), "does not hold the drum");
+    requireBadInput(dir, with({ "--box", "0,1,1" }), "--box");
+    requireBadInput(dir, with({ "--box-margin", "-0.1" }), "--box-margin");
+    requireBadInput(dir, with({ "--air-mic", "1,0,0" }), "inside the air box");
+    requireBadInput(dir, with({ "--air-mic", "0,0,0" }), "inside the drum's shell");
+    requireBadInput(dir, with({ "--threads", "0" }), "--threads");
+    requireBadInput(dir, with({ "--box", "0.7", "--box-margin", "0.1" }), "one or the other");
+    requireBadInput(dir, { "--hit", "0:100", "--air-mic", "0,0,0.2" }, "applies to the air box only");
+    requireBadInput(dir, { "--hit", "0:100", "--mic", "air" }, "--mic air");
+}
+
 TEST_CASE("bad input: unreadable or invalid MIDI files", "[renderer][errors]")
 {
     TempDir dir;

@@ -472,3 +472,45 @@ TEST_CASE("help: --help prints the usage and exits 0", "[renderer]")
         CHECK(run.err.empty());
     }
 }
+
+TEST_CASE("the air box renders its air microphones, one channel each", "[renderer][airbox]")
+{
+    TempDir dir;
+    const auto wav = dir.out() / "box.wav";
+    // Default microphones: close top, bottom, far; a short render at 22.05 kHz.
+    auto run = runRenderer({ "-o", wav.string(), "--hit", "0:110", "--seconds", "0.03", "--sample-rate", "22050",
+                             "--model", "airbox", "--json" },
+                           dir.root() / "capture");
+    REQUIRE(run.exitCode == 0);
+    CHECK(run.out.find("\"mic\": \"air\"") != std::string::npos);
+    auto data = readWav(wav);
+    REQUIRE(data.opened);
+    CHECK(data.channels == 3);
+    float close = 0.0f, far = 0.0f;
+    for (const float x : data.channelSamples[0])
+        close = std::max(close, std::abs(x));
+    for (const float x : data.channelSamples[2])
+        far = std::max(far, std::abs(x));
+    INFO("peaks: close top " << close << ", far " << far);
+    CHECK(close > 1.0e-3f);
+    CHECK(close < 4.0f);
+    CHECK(far < close); // farther from the batter, quieter
+
+    // Two microphones given: two channels, the one above the batter louder than the one
+    // beside the shell at the same height farther out.
+    run = runRenderer({ "-o", wav.string(), "--hit", "0:110", "--seconds", "0.03", "--sample-rate", "22050", "--model", "airbox",
+                        "--air-mic", "0.1,0,0.12", "--air-mic", "0.24,0,0.12" },
+                      dir.root() / "capture");
+    REQUIRE(run.exitCode == 0);
+    data = readWav(wav);
+    REQUIRE(data.channels == 2);
+    float near = 0.0f, side = 0.0f;
+    for (std::size_t i = 0; i < data.channelSamples[0].size(); ++i)
+    {
+        near = std::max(near, std::abs(data.channelSamples[0][i]));
+        side = std::max(side, std::abs(data.channelSamples[1][i]));
+        REQUIRE(std::isfinite(data.channelSamples[0][i]));
+    }
+    INFO("peaks: above the batter " << near << ", beside " << side);
+    CHECK(near > side);
+}
