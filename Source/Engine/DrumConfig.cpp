@@ -261,6 +261,7 @@ DrumConfig mapParameters(const ParameterSet& p, double sampleRate_Hz) noexcept
     c.cavity.shellDepth_m = p.get(ParamId::shellDepth);
     c.cavity.gridShellDepth_m = spec(ParamId::shellDepth).minValue;
     c.cavity.model = static_cast<AirModel>(std::lround(p.get(ParamId::airModel))); // none, cavity, airbox: the choices in order
+    c.air.sigma_m = p.get(ParamId::airLoss);
 
     c.strikeRadius_frac = p.get(ParamId::strikePosition);
     c.strikeSpeedMax_m_per_s = p.get(ParamId::strikeSpeedMax);

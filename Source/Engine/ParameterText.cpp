@@ -67,8 +67,13 @@ ValueFormat valueFormat(const ParameterSpec& spec)
     f.unit = f.schemaUnit;
     const double largest = std::max(std::abs(spec.minValue), std::abs(spec.maxValue));
 
-    // Small lengths and masses read better in mm and g.
-    if (spec.unit == "m" && largest <= 0.5)
+    // Small lengths and masses read better in µm, mm and g.
+    if (spec.unit == "m" && largest <= 1.0e-3)
+    {
+        f.scale = 1.0e6;
+        f.unit = "\xc2\xb5m"; // µm
+    }
+    else if (spec.unit == "m" && largest <= 0.5)
     {
         f.scale = 1000.0;
         f.unit = "mm";

@@ -71,6 +71,9 @@ constexpr std::array<ParameterSpec, kNumParameters> kSpecs {{
     { P::snareSolver, "snare_solver", "Snare collision solver", "", 0.0, 1.0, 0.0, S::linear, N::newModel,
       "Snare/head collisions: quadratised (one linear solve per sample, real time) or Newton (the paper's eq. 50, iterative)",
       K, "quadratised|newton", "model" },
+    { P::airLoss, "air_loss", "Air loss (air box)", "m", 0.0, 2.0e-5, 2.0e-6, S::linear, N::newGrid,
+      "Viscothermal loss sigma_a of the air box's air (eq. 5): it damps the air grid's highest, most dispersed band; its grid spacing follows eq. (41)",
+      C, "", "heads" },
 }};
 
 constexpr bool tableInOrder()

@@ -48,6 +48,8 @@ enum class ParamId : std::size_t
     // model
     gridCoarseness,
     snareSolver,
+    // the air box (appended: hosts that number parameters keep their automation)
+    airLoss,
     count
 };
 

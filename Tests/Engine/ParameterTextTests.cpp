@@ -27,6 +27,7 @@ TEST_CASE("values are written in readable units", "[parameters][text]")
     CHECK(text(ParamId::damping, 25.0) == "25 %");
     CHECK(text(ParamId::shellDepth, 0.14) == "140 mm");
     CHECK(text(ParamId::malletMass, 0.028) == "28.0 g");
+    CHECK(text(ParamId::airLoss, 2.0e-6) == "2.0 \xc2\xb5m");
     CHECK(text(ParamId::malletStiffness, 1.0e8) == "1.0e8 N/m^\xce\xb1");
     CHECK(text(ParamId::malletStiffness, 9.96e8) == "1.0e9 N/m^\xce\xb1"); // the mantissa rounds up to 10
     CHECK(text(ParamId::highDamping, 1.0e-3) == "1.0e-3 m\xc2\xb2/s");
@@ -45,6 +46,8 @@ TEST_CASE("text is read in the written unit, the schema's unit, or by name", "[p
     CHECK(read(ParamId::shellDepth, " 0.12 m ") == Approx(0.12));
     CHECK(read(ParamId::shellDepth, "0.12", BareNumber::schemaUnit) == Approx(0.12));
     CHECK(read(ParamId::malletMass, "28 g") == Approx(0.028));
+    CHECK(read(ParamId::airLoss, "5 \xc2\xb5m") == Approx(5.0e-6));
+    CHECK(read(ParamId::airLoss, "5e-6 m") == Approx(5.0e-6));
     CHECK(read(ParamId::malletMass, "0.03 kg") == Approx(0.03));
     CHECK(read(ParamId::malletStiffness, "2e8 N/m^alpha") == Approx(2.0e8));
     CHECK(read(ParamId::malletStiffness, "2e8 N/m^\xce\xb1") == Approx(2.0e8));
