@@ -306,6 +306,7 @@ void Drum::stepCouplingsInAir()
     stats.maxAirTrials = std::max({ stats.maxAirTrials, onBatter.trials, onCarry.trials });
     stats.airCapped += (onBatter.capped ? 1 : 0) + (onCarry.capped ? 1 : 0);
     stats.airTrials += onBatter.trials + onCarry.trials;
+    stats.maxAirMismatch = std::max({ stats.maxAirMismatch, onBatter.mismatch, onCarry.mismatch });
     box.listen();
 }
 

@@ -36,6 +36,7 @@ struct SolverStats
     int maxAirTrials = 0;       // air box: most contact trials of one head's joint solve (DrumAir.h)
     long airCapped = 0;         // air box: joint solves stopped at their cap
     long airTrials = 0;         // air box: contact trials of both heads since resetStats()
+    double maxAirMismatch = 0.0; // air box: largest final mismatch of a joint solve, relative to max |w|
 };
 
 enum class Mic

@@ -35,6 +35,7 @@ struct JointSolveResult
 {
     int trials = 0;        // contact solves this step (1 when the contacts exert no force)
     bool capped = false;   // stopped at maxTrials before the pull settled
+    double mismatch = 0.0; // the last trial's mismatch (HeadEmbedding::correct) / max |w| over the head
 };
 
 class DrumAir
@@ -95,6 +96,7 @@ private:
             ++result.trials;
             trial();
             const double change = e.correct(), scale = e.scale();
+            result.mismatch = scale > 0.0 ? change / scale : 0.0;
             if (change <= tolerance * scale || (change >= last && change <= stallTolerance * scale))
                 break;
             if (result.trials >= maxTrials)

@@ -156,6 +156,7 @@ double HeadEmbedding::correct()
         pull[(Eigen::Index) j] = p;
         const double wj = wFree[(Eigen::Index) j] - p;
         w[(Eigen::Index) j] = wj;
+        wScale = std::max(wScale, std::abs(wj));
         head.setNextAt(support[j], wj);
     }
     s.swap(sNew);
