@@ -12,6 +12,7 @@
 #include <charconv>
 #include <cmath>
 #include <functional>
+#include <initializer_list>
 #include <optional>
 #include <set>
 #include <string_view>
@@ -162,30 +163,37 @@ ParameterOverride parseOverride(std::string_view text)
     return result;
 }
 
-int parseBlockSize(std::string_view text)
+// A whole number within lo..hi; "--opt: 'text' is outside lo..hi[ unit]" otherwise.
+int parseIntegerIn(std::string_view text, std::string_view option, int lo, int hi, std::string_view unit = "")
 {
-    const int size = parseInteger(text, "--block-size");
-    if (size < kMinBlockSize || size > kMaxBlockSize)
-        fail("--block-size: " + inQuotes(text) + " is outside " + std::to_string(kMinBlockSize) + ".."
-             + std::to_string(kMaxBlockSize) + " samples");
-    return size;
+    const int n = parseInteger(text, option);
+    if (n < lo || n > hi)
+        fail(std::string(option) + ": " + inQuotes(text) + " is outside " + std::to_string(lo) + ".." + std::to_string(hi)
+             + (unit.empty() ? "" : " ") + std::string(unit));
+    return n;
 }
 
-int parseRepeats(std::string_view text)
+// One of a few names; "--opt: 'text' is not one of a|b" otherwise.
+template <typename Value>
+Value parseName(std::string_view text, std::string_view option, std::initializer_list<std::pair<std::string_view, Value>> names)
 {
-    const int repeats = parseInteger(text, "--bench-repeat");
-    if (repeats < 1 || repeats > kMaxBenchRepeats)
-        fail("--bench-repeat: " + inQuotes(text) + " is outside 1.." + std::to_string(kMaxBenchRepeats));
-    return repeats;
+    std::string list;
+    for (const auto& [name, value] : names)
+    {
+        if (name == text)
+            return value;
+        (list += list.empty() ? "" : "|").append(name);
+    }
+    fail(std::string(option) + ": " + inQuotes(text) + " is not one of " + list);
 }
+
+int parseBlockSize(std::string_view text) { return parseIntegerIn(text, "--block-size", kMinBlockSize, kMaxBlockSize, "samples"); }
+
+int parseRepeats(std::string_view text) { return parseIntegerIn(text, "--bench-repeat", 1, kMaxBenchRepeats); }
 
 BenchScenario parseScenario(std::string_view text)
 {
-    if (text == "default")
-        return BenchScenario::standard;
-    if (text == "roll")
-        return BenchScenario::roll;
-    fail("--bench-scenario: " + inQuotes(text) + " is not one of default|roll");
+    return parseName<BenchScenario>(text, "--bench-scenario", { { "default", BenchScenario::standard }, { "roll", BenchScenario::roll } });
 }
 
 // The benchmark runs the plug-in's path (Drum::process, the mix, no energy tracking) and
@@ -283,20 +291,10 @@ double parseBoxMargin(std::string_view text)
 
 Walls parseWalls(std::string_view text)
 {
-    if (text == "absorbing")
-        return Walls::absorbing;
-    if (text == "reflecting")
-        return Walls::reflecting;
-    fail("--walls: " + inQuotes(text) + " is not one of absorbing|reflecting");
+    return parseName<Walls>(text, "--walls", { { "absorbing", Walls::absorbing }, { "reflecting", Walls::reflecting } });
 }
 
-int parseThreads(std::string_view text)
-{
-    const int n = parseInteger(text, "--threads");
-    if (n < 1 || n > 256)
-        fail("--threads: " + inQuotes(text) + " is outside 1..256");
-    return n;
-}
+int parseThreads(std::string_view text) { return parseIntegerIn(text, "--threads", 1, 256); }
 
 std::filesystem::path parsePath(std::string_view text, std::string_view option)
 {
