@@ -14,75 +14,27 @@
 #include <new>
 #include <thread>
 
-namespace
-{
-thread_local bool countingThisThread = false;
-std::atomic<long> audioThreadAllocations { 0 };
+#include "CountingAllocator.h"
 
-void* allocate (std::size_t size)
-{
-    if (countingThisThread)
-        audioThreadAllocations.fetch_add (1, std::memory_order_relaxed);
-    if (void* p = std::malloc (size == 0 ? 1 : size))
-        return p;
-    throw std::bad_alloc();
-}
-
-void* allocateAligned (std::size_t size, std::align_val_t alignment)
-{
-    if (countingThisThread)
-        audioThreadAllocations.fetch_add (1, std::memory_order_relaxed);
-    const auto a = static_cast<std::size_t> (alignment);
-    if (void* p = std::aligned_alloc (a, (size + a - 1) / a * a))
-        return p;
-    throw std::bad_alloc();
-}
-
-struct CountAllocations
-{
-    CountAllocations() { countingThisThread = true; }
-    ~CountAllocations() { countingThisThread = false; }
-};
-} // namespace
-
-// The replacements (every form; the nothrow ones forward).
-void* operator new (std::size_t size) { return allocate (size); }
-void* operator new[] (std::size_t size) { return allocate (size); }
-void* operator new (std::size_t size, const std::nothrow_t&) noexcept
-{
-    try { return allocate (size); } catch (...) { return nullptr; }
-}
-void* operator new[] (std::size_t size, const std::nothrow_t&) noexcept
-{
-    try { return allocate (size); } catch (...) { return nullptr; }
-}
-void* operator new (std::size_t size, std::align_val_t a) { return allocateAligned (size, a); }
-void* operator new[] (std::size_t size, std::align_val_t a) { return allocateAligned (size, a); }
-void operator delete (void* p) noexcept { std::free (p); }
-void operator delete[] (void* p) noexcept { std::free (p); }
-void operator delete (void* p, std::size_t) noexcept { std::free (p); }
-void operator delete[] (void* p, std::size_t) noexcept { std::free (p); }
-void operator delete (void* p, std::align_val_t) noexcept { std::free (p); }
-void operator delete[] (void* p, std::align_val_t) noexcept { std::free (p); }
-void operator delete (void* p, std::size_t, std::align_val_t) noexcept { std::free (p); }
-void operator delete[] (void* p, std::size_t, std::align_val_t) noexcept { std::free (p); }
+using snaresim::test::CountAllocations;
+using snaresim::test::countedAllocations;
 
 using namespace snaresim::testing;
 using snaresim::ParamId;
 
 TEST_CASE ("the allocation counter sees allocations on the counted thread only", "[processor][realtime]")
 {
-    const long before = audioThreadAllocations.load();
+    const long before = countedAllocations.load();
     {
         CountAllocations counting;
         auto* p = new int (3);
         delete p;
     }
-    CHECK (audioThreadAllocations.load() == before + 1);
+    CHECK (countedAllocations.load() == before + 1);
 
     auto* q = new int (4);   // not counted
     delete q;
-    CHECK (audioThreadAllocations.load() == before + 1);
+    CHECK (countedAllocations.load() == before + 1);
 }
 
 TEST_CASE ("processBlock never allocates", "[processor][realtime]")
@@ -98,7 +50,7 @@ TEST_CASE ("processBlock never allocates", "[processor][realtime]")
     midi.ensureSize (4096);
     const int swapsAtStart = proc.getModelSwapCount();
     long blocks = 0;
-    audioThreadAllocations = 0;
+    countedAllocations = 0;
 
     auto processOne = [&] (int numSamples, std::initializer_list<std::pair<int, juce::MidiMessage>> events)
     {
@@ -141,7 +93,7 @@ TEST_CASE ("processBlock never allocates", "[processor][realtime]")
             default: processOne (n, {}); break;
         }
     }
-    CHECK (audioThreadAllocations.load() == 0);
+    CHECK (countedAllocations.load() == 0);
 
     // A model swap: the new model is built in the background and installed, crossfaded and the
     // old one sent back, all without allocating on the audio thread.
@@ -159,5 +111,5 @@ TEST_CASE ("processBlock never allocates", "[processor][realtime]")
     CHECK (proc.getDrum()->config().snares.count == 7);
 
     INFO ("blocks processed: " << blocks);
-    CHECK (audioThreadAllocations.load() == 0);
+    CHECK (countedAllocations.load() == 0);
 }
