@@ -1,0 +1,122 @@
+// Whether a drum keeps up in real time: the probe's figures, and the check that measures off the
+// caller's thread and remembers its verdicts.
+
+#include "Drum.h"
+#include "DrumConfig.h"
+#include "KeepUp.h"
+
+#include <catch2/catch.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <thread>
+
+using namespace snaresim;
+
+namespace
+{
+ParameterSet fastDrum()
+{
+    ParameterSet p;
+    p.set(ParamId::gridCoarseness, 3.0);
+    p.set(ParamId::snareCount, 5.0);
+    return p;
+}
+
+KeepUpCheck::Verdict waitForVerdict(KeepUpCheck& check, const ParameterSet& p, double rate, int block)
+{
+    const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+    for (;;)
+    {
+        const auto v = check.ask(p, rate, block);
+        if (v.state != KeepUpCheck::State::measuring || std::chrono::steady_clock::now() > until)
+            return v;
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+}
+} // namespace
+
+TEST_CASE("the keep-up probe times an unstruck and a struck drum in the host's blocks", "[keepup]")
+{
+    Drum drum(makeDrumConfig(fastDrum(), 48000.0));
+    const auto f = measureKeepUp(drum, 256);
+    CHECK(f.blockSize == 256);
+    CHECK_FALSE(f.cutShort);
+    // 0.1 s of audio in whole blocks: 19 of 256 samples.
+    CHECK(f.audioSeconds == Approx(19 * 256 / 48000.0));
+    CHECK(f.load > 0.0);
+    CHECK(std::isfinite(f.load));
+    CHECK(f.worstBlockShare >= f.load);
+    // The drum is left as it was found: reset, silent.
+    for (int n = 0; n < 64; ++n)
+        REQUIRE(drum.step() == 0.0);
+
+    // Large blocks: at least one unstruck and two struck ones.
+    const auto big = measureKeepUp(drum, 8192);
+    CHECK(big.audioSeconds == Approx(3 * 8192 / 48000.0));
+
+    // Cancelled at once: nothing rendered, and no verdict of keeping up.
+    const auto none = measureKeepUp(drum, 256, [] { return true; });
+    CHECK(none.audioSeconds == 0.0);
+    CHECK_FALSE(keepsUp(none));
+
+    // The verdict's thresholds.
+    KeepUpFigures g;
+    g.audioSeconds = 0.1;
+    g.load = kKeepUpMaxLoad;
+    g.worstBlockShare = kKeepUpMaxWorstBlock;
+    CHECK(keepsUp(g));
+    g.load = kKeepUpMaxLoad * 1.01;
+    CHECK_FALSE(keepsUp(g));
+    g.load = 0.1;
+    g.worstBlockShare = 1.0;
+    CHECK_FALSE(keepsUp(g));
+    g.worstBlockShare = 0.1;
+    g.cutShort = true;
+    CHECK_FALSE(keepsUp(g));
+}
+
+TEST_CASE("the keep-up check measures in the background and remembers what it measured", "[keepup]")
+{
+    KeepUpCheck check;
+    auto airbox = fastDrum();
+    airbox.set(ParamId::airModel, (double) AirModel::airbox);
+
+    CHECK(check.ask(airbox, 0.0, 256).state == KeepUpCheck::State::none);     // no rate: nothing asked
+    CHECK(check.latest().state == KeepUpCheck::State::none);
+
+    const auto asked = std::chrono::steady_clock::now();
+    CHECK(check.ask(airbox, 48000.0, 256).state == KeepUpCheck::State::measuring);
+    // Returns at once, whatever the measurement takes.
+    CHECK(std::chrono::steady_clock::now() - asked < std::chrono::milliseconds(100));
+    CHECK(check.latest().state == KeepUpCheck::State::measuring);
+
+    const auto v = waitForVerdict(check, airbox, 48000.0, 256);
+    // The air box is far slower than real time on any machine so far (BENCHMARKS.md).
+    REQUIRE(v.state == KeepUpCheck::State::tooSlow);
+    CHECK(v.figures.load > 1.0);
+    CHECK(check.measurementsDone() == 1);
+    CHECK(check.latest().state == KeepUpCheck::State::tooSlow);
+
+    // Live parameters do not make another model: the same verdict, not measured again.
+    auto louder = airbox;
+    louder.set(ParamId::outputGain, 6.0);
+    louder.set(ParamId::batterTension, 4000.0);
+    CHECK(check.ask(louder, 48000.0, 256).state == KeepUpCheck::State::tooSlow);
+    CHECK(check.measurementsDone() == 1);
+
+    // A question replaced before its answer is not answered; the newest is.
+    auto other = airbox;
+    other.set(ParamId::airLoss, 5.0e-6);
+    CHECK(check.ask(other, 44100.0, 128).state == KeepUpCheck::State::measuring);
+    const auto fast = fastDrum();
+    const auto w = waitForVerdict(check, fast, 48000.0, 512);
+    CHECK(w.state != KeepUpCheck::State::measuring);
+    CHECK(check.measurementsDone() <= 3);
+    CHECK(check.latest().state == w.state);
+
+    // Stopped: known verdicts stay, nothing new is measured.
+    check.stop();
+    CHECK(check.ask(airbox, 48000.0, 256).state == KeepUpCheck::State::tooSlow);
+    CHECK(check.ask(airbox, 96000.0, 256).state == KeepUpCheck::State::none);
+}
