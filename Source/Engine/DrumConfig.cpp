@@ -262,6 +262,8 @@ DrumConfig mapParameters(const ParameterSet& p, double sampleRate_Hz) noexcept
     c.cavity.gridShellDepth_m = spec(ParamId::shellDepth).minValue;
     c.cavity.model = static_cast<AirModel>(std::lround(p.get(ParamId::airModel))); // none, cavity, airbox: the choices in order
     c.air.sigma_m = p.get(ParamId::airLoss);
+    // ParamId::offlineAirBox is the host's, not the drum's: the plug-in reads it to choose the air
+    // model of its offline renders (it arrives here as the air model).
 
     c.strikeRadius_frac = p.get(ParamId::strikePosition);
     c.strikeSpeedMax_m_per_s = p.get(ParamId::strikeSpeedMax);

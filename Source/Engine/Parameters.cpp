@@ -38,7 +38,7 @@ constexpr std::array<ParameterSpec, kNumParameters> kSpecs {{
     { P::shellDepth, "shell_depth", "Shell depth", "m", 0.05, 0.25, 0.14, S::linear, N::coefficients,
       "Depth of the shell: the enclosed air's volume and so its stiffness", C, "", "heads" },
     { P::airModel, "air_model", "Air model", "", 0.0, 2.0, 1.0, S::linear, N::newModel,
-      "The air: none (heads uncoupled), the reduced cavity between the heads, or the air box (the drum in a 3D box of air that radiates; offline only: in real time the cavity plays)",
+      "The air: none (heads uncoupled), the reduced cavity between the heads, or the air box (the drum in a 3D box of air that radiates; in real time only where this machine keeps up with it, else the cavity plays and bounces use the air box)",
       K, "none|cavity|airbox", "heads" },
     { P::snaresEngaged, "snares_engaged", "Snares on", "", 0.0, 1.0, 1.0, S::linear, N::coefficients,
       "Snares on the carry head (1) or thrown off (0)", B, "off|on", "snares" },
@@ -74,6 +74,9 @@ constexpr std::array<ParameterSpec, kNumParameters> kSpecs {{
     { P::airLoss, "air_loss", "Air loss (air box)", "m", 0.0, 2.0e-5, 2.0e-6, S::linear, N::newGrid,
       "Viscothermal loss sigma_a of the air box's air (eq. 5): it damps the air grid's highest, most dispersed band; its grid spacing follows eq. (41)",
       C, "", "heads" },
+    { P::offlineAirBox, "offline_airbox", "Air box when bouncing", "", 0.0, 1.0, 1.0, S::linear, N::coefficients,
+      "When the host renders offline (a bounce), the drum plays in the air box whatever the air model says; off: bounces play the air model. Read by the plug-in only: the renderer plays the air model",
+      B, "off|on", "model" },
 }};
 
 constexpr bool tableInOrder()

@@ -50,6 +50,8 @@ enum class ParamId : std::size_t
     snareSolver,
     // the air box (appended: hosts that number parameters keep their automation)
     airLoss,
+    // how the host's offline renders play (appended likewise)
+    offlineAirBox,
     count
 };
 
