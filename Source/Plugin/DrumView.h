@@ -29,7 +29,7 @@ public:
     // The current colour scale: displacement shown at full colour (m).
     float getColourScale() const noexcept { return headScale; }
 
-    // A line over the picture (empty: none), e.g. that the air box plays offline only.
+    // A line over the picture (empty: none), e.g. that the air box does not keep up here.
     void setNotice (const juce::String& text);
     const juce::String& getNotice() const noexcept { return notice; }
 

@@ -190,7 +190,7 @@ void SnareSimAudioProcessorEditor::refreshFromProcessor()
     fallbacksReadout.setValue (fallbacks, fallbacks > 0);
     resetsReadout.setValue (resets, resets > 0);
     newtonReadout.setValue (processor.getMaxNewtonIterations(), false);
-    drumView.setNotice (processor.airBoxHeldBack() ? "Air box: offline renders only; the cavity plays in real time" : "");
+    drumView.setNotice (processor.airBoxNotice());
 
     // Follow program changes made by the host.
     const int program = processor.getCurrentProgram();

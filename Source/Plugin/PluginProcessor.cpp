@@ -28,7 +28,8 @@ SnareSimAudioProcessor::SnareSimAudioProcessor()
 SnareSimAudioProcessor::~SnareSimAudioProcessor()
 {
     cancelPendingUpdate();
-    player.stopBuilding();
+    player.stopBuilding();      // the builder reads currentParameters, which asks keepUp
+    keepUp.stop();
 }
 
 const juce::String SnareSimAudioProcessor::getName() const
@@ -36,7 +37,7 @@ const juce::String SnareSimAudioProcessor::getName() const
     return JucePlugin_Name;
 }
 
-snaresim::ParameterSet SnareSimAudioProcessor::currentParameters() const
+snaresim::ParameterSet SnareSimAudioProcessor::hostParameters() const
 {
     snaresim::ParameterSet params;
 
@@ -44,16 +45,93 @@ snaresim::ParameterSet SnareSimAudioProcessor::currentParameters() const
         if (const auto* raw = rawParameters[static_cast<std::size_t> (spec.id)])
             params.setClamped (spec.id, (double) raw->load());
 
-    if (airBoxHeldBack())
-        params.setClamped (snaresim::ParamId::airModel, (double) snaresim::AirModel::cavity);
+    return params;
+}
+
+snaresim::KeepUpCheck::Verdict SnareSimAudioProcessor::askKeepUp (const snaresim::ParameterSet& params) const
+{
+    try
+    {
+        return keepUp.ask (params, preparedRate.load(), preparedBlockSize.load());
+    }
+    catch (const std::exception&)
+    {
+        return {};  // nothing known: the cavity plays
+    }
+}
+
+snaresim::ParameterSet SnareSimAudioProcessor::currentParameters() const
+{
+    using snaresim::AirModel;
+    using snaresim::ParamId;
+    auto params = hostParameters();
+
+    if (offline.load())
+    {
+        if (params.get (ParamId::offlineAirBox) >= 0.5)
+            params.setClamped (ParamId::airModel, (double) AirModel::airbox);
+    }
+    else if (std::lround (params.get (ParamId::airModel)) == (long) AirModel::airbox)
+    {
+        const bool live = askKeepUp (params).state == snaresim::KeepUpCheck::State::keepsUp;
+        airBoxLive.store (live);
+        if (! live)
+            params.setClamped (ParamId::airModel, (double) AirModel::cavity);
+    }
+    else
+    {
+        airBoxLive.store (false);
+    }
 
     return params;
 }
 
-bool SnareSimAudioProcessor::airBoxHeldBack() const noexcept
+bool SnareSimAudioProcessor::playsAirBox() const noexcept
 {
-    const auto* air = rawParameters[static_cast<std::size_t> (snaresim::ParamId::airModel)];
-    return ! offline.load() && air != nullptr && std::lround (air->load()) == (long) snaresim::AirModel::airbox;
+    const auto* drum = player.drum();
+    return drum != nullptr && drum->config().cavity.model == snaresim::AirModel::airbox;
+}
+
+bool SnareSimAudioProcessor::airBoxHeldBack() const
+{
+    const auto params = hostParameters();
+    return ! offline.load() && std::lround (params.get (snaresim::ParamId::airModel)) == (long) snaresim::AirModel::airbox
+           && askKeepUp (params).state != snaresim::KeepUpCheck::State::keepsUp;
+}
+
+snaresim::KeepUpCheck::Verdict SnareSimAudioProcessor::airBoxVerdict() const
+{
+    const auto params = hostParameters();
+    if (std::lround (params.get (snaresim::ParamId::airModel)) != (long) snaresim::AirModel::airbox)
+        return {};
+    return askKeepUp (params);
+}
+
+juce::String SnareSimAudioProcessor::airBoxNotice() const
+{
+    using State = snaresim::KeepUpCheck::State;
+
+    if (offline.load())
+        return std::lround (currentParameters().get (snaresim::ParamId::airModel)) == (long) snaresim::AirModel::airbox
+                   ? "Air box: the host renders offline, the air box plays"
+                   : "";
+
+    const auto params = hostParameters();
+    if (std::lround (params.get (snaresim::ParamId::airModel)) != (long) snaresim::AirModel::airbox)
+        return {};
+
+    const auto verdict = askKeepUp (params);
+    const double load = verdict.figures.load;
+    const auto times = (load < 10.0 ? juce::String (load, 1) : juce::String (juce::roundToInt (load))) + "x real time";
+    switch (verdict.state)
+    {
+        case State::keepsUp:    return "Air box: needs " + times + " here; it plays live";
+        case State::tooSlow:    return "Air box: needs " + times + " here; the cavity plays live, bounces use the air box";
+        case State::failed:     return "Air box: cannot be built here; the cavity plays";
+        case State::measuring:  return "Air box: measuring whether it keeps up here; the cavity plays meanwhile";
+        case State::none:       break;
+    }
+    return "Air box: measured once the audio starts; the cavity plays meanwhile";
 }
 
 void SnareSimAudioProcessor::setNonRealtime (bool isNonRealtime) noexcept
@@ -63,8 +141,12 @@ void SnareSimAudioProcessor::setNonRealtime (bool isNonRealtime) noexcept
 }
 
 //==============================================================================
-void SnareSimAudioProcessor::prepareToPlay (double sampleRate, int /*maximumExpectedSamplesPerBlock*/)
+void SnareSimAudioProcessor::prepareToPlay (double sampleRate, int maximumExpectedSamplesPerBlock)
 {
+    // What the air box is measured at (currentParameters).
+    preparedRate.store (sampleRate);
+    preparedBlockSize.store (maximumExpectedSamplesPerBlock > 0 ? maximumExpectedSamplesPerBlock : 512);
+
     // The player renders in sub-blocks into fixed scratch space: the announced block size
     // needs no allocation and larger blocks just work.
     auto preparation = player.prepare (sampleRate, currentParameters());
@@ -100,6 +182,26 @@ void SnareSimAudioProcessor::processBlock (juce::AudioBuffer<float>& buffer, juc
     // first use on a thread may allocate).
     processingThread.store (juce::Thread::getCurrentThreadId(), std::memory_order_relaxed);
 
+    // A host that starts an offline render while playing (LV2 hosts say so only here, in the
+    // audio callback) gets the drum that render needs before its first sample: built now, on
+    // this thread, which is then not a real-time one. Real-time blocks never get here.
+    const bool offlineNow = offline.load (std::memory_order_relaxed);
+    if (offlineNow != offlineInBlocks)
+    {
+        offlineInBlocks = offlineNow;
+        if (offlineNow)
+        {
+            try
+            {
+                player.buildNowIfNeeded();
+            }
+            catch (const std::exception&)
+            {
+                // The background builder tries again.
+            }
+        }
+    }
+
     for (const auto& spec : snaresim::parameterSpecs())
         player.setTarget (spec.id, (double) rawParameters[static_cast<std::size_t> (spec.id)]->load (std::memory_order_relaxed));
 
@@ -110,6 +212,21 @@ void SnareSimAudioProcessor::processBlock (juce::AudioBuffer<float>& buffer, juc
         return;     // nowhere to play to
     }
     float* out = buffer.getWritePointer (0);
+
+    // Real time never plays a drum that cannot keep up: an air-box drum left from an offline
+    // render (the host says it is back in real time only now) is silent until the drum real
+    // time plays is built (in the background; taken here as soon as it is there).
+    if (! offlineNow && ! airBoxLive.load (std::memory_order_relaxed) && playsAirBox())
+    {
+        player.process (out, 0, {});
+        if (playsAirBox())
+        {
+            buffer.clear();
+            processingThread.store (nullptr, std::memory_order_relaxed);
+            return;
+        }
+    }
+
     int done = 0;           // samples rendered
     std::size_t count = 0;  // events gathered since
 

@@ -3,7 +3,8 @@
 // parameters, MIDI and buffer into calls of the engine's real-time player (DrumPlayer.h), which
 // does the smoothing, event splitting, model hand-off, guard and metering. The parameters
 // (ParameterLayout.h), the saved state (PluginState.h) and the factory programs live here.
-// processBlock never locks, allocates, frees, logs or blocks.
+// In real time processBlock never locks, allocates, frees, logs or blocks; the first block of a
+// host's offline render may build the drum that render needs (setNonRealtime).
 //
 // Threads: processBlock runs on the audio thread; pullSnapshot on the message thread;
 // setCurrentProgram and the state calls on the host's message / UI thread (they set parameters
@@ -17,6 +18,7 @@
 #include <memory>
 
 #include "DrumPlayer.h"
+#include "KeepUp.h"
 #include "Parameters.h"
 
 class SnareSimAudioProcessor final : public juce::AudioProcessor,
@@ -80,17 +82,29 @@ public:
     //==============================================================================
     // For tests and tools.
 
-    // The current parameter values as the engine sees them (clamped into range). Thread-safe.
+    // The parameter values the drum is built from (clamped into range), the air model as it
+    // plays: in a host's offline render (setNonRealtime) the air box when "Air box when
+    // bouncing" is on, else the air model; in real time the air model, except that the air box
+    // plays only once a measurement has shown that this machine keeps up with it at the prepared
+    // sample rate and block size (KeepUp.h), and the cavity meanwhile or otherwise.
+    // Thread-safe; never waits for a measurement; not for the audio thread.
     snaresim::ParameterSet currentParameters() const;
 
     // True when the model playing now could not be built from the parameters and fell back
     // to the default parameter set.
     bool usedFallbackParameters() const noexcept { return player.usedFallbackParameters(); }
 
-    // The air box is far slower than real time (BENCHMARKS.md): in real time an air model set
-    // to it plays the cavity instead, and the editor says so; a host's offline render
-    // (setNonRealtime) plays the air box.
-    bool airBoxHeldBack() const noexcept;
+    // The air box in real time: true while the air model is the air box and the cavity plays
+    // instead (not measured yet, or this machine does not keep up with it). The verdict of the
+    // measurement for the parameters as they are, and the editor's line about it (empty when
+    // there is nothing to say).
+    bool airBoxHeldBack() const;
+    snaresim::KeepUpCheck::Verdict airBoxVerdict() const;
+    juce::String airBoxNotice() const;
+    // Measurements of the air box finished so far (for tests).
+    int airBoxMeasurements() const noexcept { return keepUp.measurementsDone(); }
+
+    // The host renders offline (any thread; VST3 hosts call it from the audio thread).
     void setNonRealtime (bool isNonRealtime) noexcept override;
 
     // Models installed by the audio thread so far (prepareToPlay and background builds).
@@ -103,6 +117,9 @@ public:
 private:
     void handleAsyncUpdate() override;
     void applyProgram (int index);
+    snaresim::ParameterSet hostParameters() const;
+    bool playsAirBox() const noexcept;      // the drum playing is in the air box (audio thread)
+    snaresim::KeepUpCheck::Verdict askKeepUp (const snaresim::ParameterSet& params) const;
 
     juce::AudioProcessorValueTreeState apvts;
     std::array<std::atomic<float>*, snaresim::kNumParameters> rawParameters {};
@@ -111,8 +128,15 @@ private:
     snaresim::DrumPlayer player;
     std::array<snaresim::PlayerEvent, 1024> events {};     // one block's MIDI, translated (audio thread)
 
-    // --- programs --------------------------------------------------------------------------
+    // --- the air box ----------------------------------------------------------------------
     std::atomic<bool> offline { false };        // the host renders offline (setNonRealtime)
+    std::atomic<double> preparedRate { 0.0 };   // prepareToPlay's sample rate and block size
+    std::atomic<int> preparedBlockSize { 0 };
+    mutable snaresim::KeepUpCheck keepUp;       // whether the air box keeps up in real time here
+    bool offlineInBlocks = false;               // `offline` as processBlock last saw it (audio thread)
+    mutable std::atomic<bool> airBoxLive { false }; // real time plays the air box (it keeps up here)
+
+    // --- programs --------------------------------------------------------------------------
     std::atomic<int> currentProgram { 0 };
     std::atomic<int> programToApply { -1 };     // set inside processBlock, applied on the message thread
     std::atomic<juce::Thread::ThreadID> processingThread { nullptr };   // while in processBlock
