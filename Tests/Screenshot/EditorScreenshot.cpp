@@ -1,10 +1,13 @@
 // snaresim_editor_screenshot: renders the SnareSim editor to a PNG.
 //
-//   snaresim_editor_screenshot OUT.png [--size WIDTHxHEIGHT] [--program INDEX] [--ms MILLISECONDS] [--check]
+//   snaresim_editor_screenshot OUT.png [--size WIDTHxHEIGHT] [--program INDEX] [--ms MILLISECONDS]
+//                              [--set ID=VALUE ...] [--check]
 //
 // Creates the processor, prepares it at 48 kHz, plays two strikes through processBlock so the
 // drum rings and a snapshot exists, opens the editor (default size unless --size), lets it pull
-// the snapshot and the meters, and writes createComponentSnapshot as PNG.
+// the snapshot and the meters, and writes createComponentSnapshot as PNG. --set sets a parameter
+// (after --program) as the renderer's --set reads it; with the air model set to the air box it
+// waits for the measurement of whether the air box keeps up here, so the editor shows its verdict.
 //
 // With --check it then also checks the editor (a control per parameter of the table, of the
 // right kind and attached; the preset selector; the value texts of the three main controls;
@@ -27,6 +30,7 @@
 #include <initializer_list>
 #include <memory>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 namespace
@@ -38,7 +42,7 @@ int usage (const juce::String& message)
 {
     std::fprintf (stderr, "snaresim_editor_screenshot: %s\n"
                           "usage: snaresim_editor_screenshot OUT.png [--size WIDTHxHEIGHT] [--program INDEX] "
-                          "[--ms MILLISECONDS] [--check]\n",
+                          "[--ms MILLISECONDS] [--set ID=VALUE ...] [--check]\n",
                   message.toRawUTF8());
     return 2;
 }
@@ -333,6 +337,7 @@ int main (int argc, char* argv[])
     int program = -1;
     double ringMs = 42.0;
     bool check = false;
+    std::vector<std::pair<snaresim::ParamId, double>> settings;
 
     for (int i = 2; i < argc; ++i)
     {
@@ -356,6 +361,18 @@ int main (int argc, char* argv[])
         }
         else if (arg == "--program")
             program = value.getIntValue();
+        else if (arg == "--set")
+        {
+            const auto key = value.upToFirstOccurrenceOf ("=", false, false).toStdString();
+            const auto id = snaresim::findParameter (key);
+            if (! id.has_value() || ! value.contains ("="))
+                return usage ("--set wants ID=VALUE with an ID of the parameter table, not " + value);
+            const auto text = value.fromFirstOccurrenceOf ("=", false, false).toStdString();
+            const auto v = snaresim::parseValue (snaresim::spec (*id), text, snaresim::BareNumber::schemaUnit);
+            if (! v.has_value())
+                return usage ("--set " + value + ": not a value of " + juce::String (key));
+            settings.emplace_back (*id, *v);
+        }
         else if (arg == "--ms")
         {
             ringMs = value.getDoubleValue();
@@ -376,8 +393,16 @@ int main (int argc, char* argv[])
         processor->setCurrentProgram (program);
     }
 
+    for (const auto& [id, v] : settings)
+        if (auto* p = processor->getValueTreeState().getParameter (juce::String (std::string (snaresim::spec (id).key))))
+            p->setValueNotifyingHost (p->convertTo0to1 ((float) v));
+
     processor->setRateAndBufferSizeDetails (sampleRate, blockSize);
     processor->prepareToPlay (sampleRate, blockSize);
+
+    // The air box's keep-up verdict (measured in the background), so the editor shows it.
+    for (int waited = 0; processor->airBoxVerdict().state == snaresim::KeepUpCheck::State::measuring && waited < 600; ++waited)
+        juce::Thread::sleep (100);
 
     // Three seconds of silence first: the CPU meter's peak (which decays over about two
     // seconds) then shows the strikes, not the first cold blocks.
