@@ -69,10 +69,11 @@ public:
     KeepUpCheck (const KeepUpCheck&) = delete;
     KeepUpCheck& operator= (const KeepUpCheck&) = delete;
 
-    // Whether a drum built from `params` keeps up at this rate in blocks of blockSize. Returns
-    // at once: a verdict measured before for the same model (GridKey) and block size, or
-    // `measuring` (the measurement is started on the check's thread; the newest question
-    // replaces one whose measurement has not finished). Thread-safe; not for the audio thread.
+    // Whether a drum built from `params` (with the snares on) keeps up at this rate in blocks of
+    // blockSize. Returns at once: a verdict measured before for the same model (GridKey) and
+    // block size, or `measuring` (the measurement is started on the check's thread; the newest
+    // question replaces one whose measurement has not finished). Thread-safe; not for the audio
+    // thread.
     Verdict ask (const ParameterSet& params, double sampleRate, int blockSize);
 
     // The verdict for the last question asked (measuring while it runs). Thread-safe.
