@@ -8,9 +8,13 @@
 //       The batter's (0,1) mode alone, in vacuum and in the 0.6 m box, against the added mass
 //       of a baffled membrane; the heads' (0,1) pair in the cavity and in the box: frequencies
 //       and decay rates.
+//   airbox_figures s52
+//       The paper's section 5.2 in the cavity and in the box, and the variations that test
+//       what moves the wires' timing: when they are lowest and when they are back on the head.
 
 #include "AirBandRun.h"
 #include "ModePairs.h"
+#include "Section52.h"
 
 #include <cmath>
 #include <cstdint>
@@ -218,15 +222,85 @@ int pairs()
     }
     return 0;
 }
+int s52()
+{
+    using test::section52Config;
+    struct Case
+    {
+        const char* name;
+        DrumConfig cfg;
+    };
+    std::vector<Case> cases;
+    cases.push_back({ "cavity", section52Config(AirModel::cavity) });
+    cases.push_back({ "air box (0.6 m, reflecting walls)", section52Config(AirModel::airbox) });
+    {
+        // The outside air as mass on the heads: the (0,1) added mass of one baffled side
+        // (HeadEmbeddingTests.cpp: 0.0043 kg on a modal mass of rho pi R^2 J1(j01)^2), as a
+        // uniform surface density, on both heads of the cavity's drum.
+        DrumConfig c = section52Config(AirModel::cavity);
+        const double added = 0.0043 / (std::numbers::pi * 0.1778 * 0.1778 * std::pow(std::cyl_bessel_j(1.0, 2.404825557695773), 2.0));
+        c.batter.density_kg_per_m2 += added;
+        c.carry.density_kg_per_m2 += added;
+        cases.push_back({ "cavity, heads + the outside air's (0,1) mass", c });
+    }
+    {
+        DrumConfig c = section52Config(AirModel::airbox);
+        c.air.walls = AirWalls::absorbing;
+        cases.push_back({ "air box, absorbing walls", c });
+    }
+    {
+        DrumConfig c = section52Config(AirModel::airbox);
+        c.air.size_m = { 1.0, 1.0, 1.0 };
+        cases.push_back({ "air box 1.0 m", c });
+    }
+    {
+        DrumConfig c = section52Config(AirModel::airbox);
+        c.air.gridCoarseness = 1.5;
+        cases.push_back({ "air box, air grid 1.5 x the bound", c });
+    }
+    {
+        DrumConfig c = section52Config(AirModel::airbox);
+        c.batter.gridCoarseness = c.carry.gridCoarseness = 2.0;
+        cases.push_back({ "air box, heads' grids 2 x the bound", c });
+    }
+    const auto with = [](AirModel m, ParamId id, double value, bool absorbing) {
+        ParameterSet p;
+        p.set(id, value);
+        DrumConfig c = section52Config(m, p);
+        if (absorbing)
+            c.air.walls = AirWalls::absorbing;
+        return c;
+    };
+    cases.push_back({ "cavity, wires at 10 N", with(AirModel::cavity, ParamId::snareTension, 10.0, false) });
+    cases.push_back({ "air box, wires at 10 N", with(AirModel::airbox, ParamId::snareTension, 10.0, false) });
+    cases.push_back({ "air box, absorbing walls, wires at 10 N", with(AirModel::airbox, ParamId::snareTension, 10.0, true) });
+    cases.push_back({ "cavity, carry head at 1000 N/m", with(AirModel::cavity, ParamId::carryTension, 1000.0, false) });
+    cases.push_back({ "air box, carry head at 1000 N/m", with(AirModel::airbox, ParamId::carryTension, 1000.0, false) });
+    cases.push_back({ "cavity, centre strike", with(AirModel::cavity, ParamId::strikePosition, 0.0, false) });
+    cases.push_back({ "air box, centre strike", with(AirModel::airbox, ParamId::strikePosition, 0.0, false) });
+    std::printf("section 5.2 (7 wires, 5 m/s, M = 0.028 kg, lossless, Newton, grids at the bound; paper: lowest 6 ms, back about 9 ms)\n");
+    std::printf("%-46s %12s %12s %10s %10s %10s %16s\n", "", "first swing", "lowest (mm)", "all off", "back on", "clean hit",
+                "carry lowest");
+    for (const Case& c : cases)
+    {
+        const test::SnareTimes t = test::section52(c.cfg);
+        std::printf("%-46s %9.2f ms %12.3f %7.2f ms %7.2f ms %7.2f ms %7.2f ms %.3f mm\n", c.name, t.swingLowest_ms, t.swingLowest_mm, t.left_ms,
+                    t.back_ms, t.clean_ms, t.carryLowest_ms, t.carryLowest_mm);
+        std::fflush(stdout);
+    }
+    return 0;
+}
 } // namespace
 
 int main(int argc, char** argv)
 {
     const std::string what = argc > 1 ? argv[1] : "";
+    if (what == "s52")
+        return s52();
     if (what == "pairs")
         return pairs();
     if (what == "band" && argc >= 3)
         return band(argv[2], argc > 3 ? std::atof(argv[3]) : 1.0, argc > 4 ? std::atof(argv[4]) : 0.6);
-    std::fprintf(stderr, "usage: airbox_figures band OUT_DIR [SECONDS] [BOX_SIDE_M] | pairs\n");
+    std::fprintf(stderr, "usage: airbox_figures band OUT_DIR [SECONDS] [BOX_SIDE_M] | pairs | s52\n");
     return 2;
 }
