@@ -81,7 +81,9 @@ def envelope_db(x, rate):
     return 10.0 * np.log10(np.maximum(power, peak * 1e-30) / peak)
 
 
-def features(path, channel=None):
+def load_strike(path, channel=None):
+    """The samples (DC offset removed), the sample rate and the onset's index; BadInput when
+    the file is unreadable, not finite, shorter than 100 ms or silent."""
     x, rate = read_audio(path, channel)
     if not np.all(np.isfinite(x)):
         raise BadInput('%s: non-finite samples' % path)
@@ -91,8 +93,12 @@ def features(path, channel=None):
     top = np.abs(x).max()
     if top < 1e-7:  # below -140 dB of full scale
         raise BadInput('%s: silent' % path)
-
     onset = max(0, int(np.argmax(np.abs(x) >= 0.1 * top)) - int(round(0.001 * rate)))
+    return x, rate, onset
+
+
+def features(path, channel=None):
+    x, rate, onset = load_strike(path, channel)
     env = envelope_db(x, rate)
     peak_at = int(np.argmax(env))
     if peak_at - onset > 0.100 * rate:
