@@ -49,6 +49,10 @@ packages=(
 case "$mode" in
     sanitize|fuzz) packages+=(clang libclang-rt-14-dev) ;;  # the sanitizers' and libFuzzer's runtimes
 esac
+case "$mode" in
+    # the suite's test of scripts/snare_features.py (numpy, scipy; soundfile reads FLAC)
+    test|sanitize) packages+=(python3-numpy python3-scipy python3-soundfile) ;;
+esac
 
 missing=()
 for pkg in "${packages[@]}"; do

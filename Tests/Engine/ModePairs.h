@@ -18,14 +18,21 @@ struct ModePair
     double inPhase = 0.0, antiPhase = 0.0;
 };
 
-// In-phase and anti-phase peaks of the two heads' swept volumes (snares off, lossless).
-// cfg: the drum as given (the caller turns the snares off and the losses off).
-inline ModePair measuredPairs(const DrumConfig& cfg, ModePair expected)
+// The sums of each head's displacements (its swept volume / h^2), one value a step, after a
+// 2 m/s strike at the centre: the heads' axisymmetric modes only.
+struct SweptVolumes
+{
+    std::vector<double> batter, carry;
+    double sampleRate_Hz = 0.0;
+};
+
+inline SweptVolumes sweptVolumes(const DrumConfig& cfg, int steps = 1 << 15)
 {
     Drum drum(cfg);
     drum.strike(2.0, 0.0, 0.0);
-    std::vector<double> vb, vc;
-    for (int n = 0; n < (1 << 15); ++n)
+    SweptVolumes v;
+    v.sampleRate_Hz = cfg.sampleRate_Hz;
+    for (int n = 0; n < steps; ++n)
     {
         drum.step();
         double b = 0.0, c = 0.0;
@@ -33,11 +40,19 @@ inline ModePair measuredPairs(const DrumConfig& cfg, ModePair expected)
             b += w;
         for (double w : drum.carry().displacement())
             c += w;
-        vb.push_back(b);
-        vc.push_back(c);
+        v.batter.push_back(b);
+        v.carry.push_back(c);
     }
+    return v;
+}
+
+// In-phase and anti-phase peaks of the two heads' swept volumes.
+inline ModePair measuredPairs(const SweptVolumes& v, ModePair expected)
+{
+    const std::vector<double>& vb = v.batter;
+    const std::vector<double>& vc = v.carry;
     const auto B = hannSpectrum(vb), C = hannSpectrum(vc);
-    const double binHz = cfg.sampleRate_Hz / (2.0 * (double) B.size());
+    const double binHz = v.sampleRate_Hz / (2.0 * (double) B.size());
     // In-phase modes show in the sum of the swept volumes, anti-phase ones in the difference
     // (the cavity's dV). The peak taken is the strongest within 5 % of `near`, within 60 dB of
     // the spectrum's strongest, whose batter/carry cross-spectrum has the matching phase;
@@ -65,5 +80,20 @@ inline ModePair measuredPairs(const DrumConfig& cfg, ModePair expected)
     return pair;
 }
 
+// The same, of a drum: cfg as given (the caller turns the snares off and the losses off).
+inline ModePair measuredPairs(const DrumConfig& cfg, ModePair expected)
+{
+    return measuredPairs(sweptVolumes(cfg), expected);
+}
+
+// How fast a mode fades (dB/s), from the sum (sign +1, in-phase) or difference (-1,
+// anti-phase) of the two sums (SpectrumPeaks.h, bandDecay_dB_per_s).
+inline double modeDecay_dB_per_s(const SweptVolumes& v, double sign, double f_Hz)
+{
+    std::vector<double> x(v.batter.size());
+    for (size_t i = 0; i < x.size(); ++i)
+        x[i] = v.batter[i] + sign * v.carry[i];
+    return bandDecay_dB_per_s(x, v.sampleRate_Hz, f_Hz);
+}
 
 } // namespace snaresim::test
