@@ -140,7 +140,7 @@ void Drum::applyLive(const DrumConfig& next) noexcept
     batterHead.setCoefficients(n.batter.tension_N_per_m, n.batter.sigma0_per_s, n.batter.sigma1_m2_per_s);
     carryHead.setCoefficients(n.carry.tension_N_per_m, n.carry.sigma0_per_s, n.carry.sigma1_m2_per_s);
     if (box.active() && (gains[0] != batterHead.forceGain() || gains[1] != carryHead.forceGain()))
-        box.refresh(); // refactors the embeddings' solves (allocates: the air box is not real-time)
+        box.refresh(); // the embeddings' gains and the heads' response to forces (allocates nothing)
     wires.setCoefficients(n.snares.tension_N, n.snares.sigma0_per_s, n.snares.sigma1_m2_per_s);
     snareCoupling.setLaw(n.snares.stiffness, n.snares.exponent);
     air.setSpec(n.cavity, n.batter.radius_m);

@@ -12,10 +12,6 @@ void DrumAir::build(const DrumConfig& cfg, Membrane& batter, Membrane& carry)
     box->setThreads(cfg.air.threads);
     top = std::make_unique<HeadEmbedding>(*box, batter, 0.5 * H);     // closes the shell's top end
     bottom = std::make_unique<HeadEmbedding>(*box, carry, -0.5 * H);  // and its bottom end
-    batterHead = &batter;
-    carryHead = &carry;
-    batterSaved = batter.nextDisplacement();
-    carrySaved = carry.nextDisplacement();
     micCount = cfg.airMicPoints(points);
 }
 
@@ -41,6 +37,8 @@ void DrumAir::clear()
     if (! box)
         return;
     box->clear();
+    top->clear();
+    bottom->clear();
     pressures.fill(0.0);
 }
 

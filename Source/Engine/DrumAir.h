@@ -7,15 +7,23 @@
 //
 // The joint solve. A head's update with its air is A w^{n+1} = r with A = 1 + gamma J^T J
 // (HeadEmbedding.h), so a contact force distribution g moves the head by A^{-1} g, not by g.
-// The contacts (MalletContact, SnareContact) solve with the vacuum response; around them runs
-// a fixed-point iteration on the air's pull gamma J^T s: given s, the contacts see the head
-// r - gamma J^T s and add their vacuum response delta; then s = (1 + gamma J J^T)^{-1} J (r + delta)
-// and w = r + delta - gamma J^T s = A^{-1} (r + delta) exactly. The iteration is a contraction
-// (the contact forces fall as the head rises; rate below gamma |J J^T| / (1 + gamma |J J^T|)),
-// and stops when the pull changes by less than round-off; where it stops contracting (a contact
-// switching on and off between trials) the pull the contacts see next is damped. The last
-// trial's forces are what the head, its air and the contacts all see: at the fixed point the
-// energy identity holds; past the cap (counted) the mismatch is the last change of the pull.
+// J links each head node to one group of air nodes, so A^{-1} is 1 - gain_g 1 1^T on each group
+// of head nodes: the embedding gives the head the diagonal of A^{-1} as its response to forces
+// (Membrane::forceGainAt), and the contacts (MalletContact, SnareContact) solve with it. Where a
+// group holds one head node (the head coarser than the air: the carry head at the default
+// Quality) that response is exact and one trial is the joint solution. Where a group holds
+// several (the batter), a force at one node also pulls the group's other nodes by gain_g times
+// its vacuum response (gain_g about 0.003 for the default batter), and around the contacts runs
+// an iteration on that pull, node by node: the contacts see the head r - x and add their
+// response; the embedding makes the head exactly A^{-1} (r + delta) and finds the pull x each
+// node should have seen; the next trial sees that, extrapolated through the last two trials:
+// for the snares (each acts at one node) with each node's response to its own pull taken
+// linear, for the mallets (one force over a patch) along each node's secant. A group the
+// contacts moved in the last step starts from the pull it ended that step with. The iteration
+// stops when no node's pull changes by more than round-off; where it stops contracting (a
+// contact switching on and off between trials) the pull the contacts see next is damped. The
+// last trial's forces are what the head, its air and the contacts all see: at the fixed point
+// the energy identity holds; past the cap (counted) the mismatch is the last change of the pull.
 
 #include "AirBox.h"
 #include "DrumConfig.h"
@@ -64,9 +72,9 @@ public:
     // contacts from the free state and writes the head's w^{n+1}; restore() puts the contacts'
     // own state (mallets' z, wires' u, ...) back to the free state for another trial.
     template <class Trial, class Restore>
-    JointSolveResult solveBatter(Trial&& trial, Restore&& restore) { return solve(*top, *batterHead, batterSaved, trial, restore); }
+    JointSolveResult solveBatter(Trial&& trial, Restore&& restore) { return solve(*top, false, trial, restore); }
     template <class Trial, class Restore>
-    JointSolveResult solveCarry(Trial&& trial, Restore&& restore) { return solve(*bottom, *carryHead, carrySaved, trial, restore); }
+    JointSolveResult solveCarry(Trial&& trial, Restore&& restore) { return solve(*bottom, true, trial, restore); }
 
     // The pressure microphones rho_a dt+ Psi at n+1/2 (after both heads are solved).
     void listen();
@@ -74,7 +82,7 @@ public:
     const AirPoint& micPoint(int i) const { return points[(size_t) i]; }
     double micPressure(int i) const { return pressures[(size_t) i]; }
 
-    // Call after a head's coefficients change (its sigma0 enters the solve); allocates.
+    // Call after a head's coefficients change (its sigma0 enters the solve). Allocates nothing.
     void refresh();
 
     double energy() const { return box ? box->energy() : 0.0; }
@@ -84,12 +92,10 @@ public:
 
 private:
     template <class Trial, class Restore>
-    JointSolveResult solve(HeadEmbedding& e, Membrane& head, std::vector<double>& saved, Trial& trial, Restore& restore)
+    JointSolveResult solve(HeadEmbedding& e, bool pointwise, Trial& trial, Restore& restore)
     {
         JointSolveResult result;
-        e.solveFree();
-        double sum = 0.0;
-        head.saveNext(saved, sum);
+        e.solveFree(true);
         double last = std::numeric_limits<double>::infinity(), omega = 1.0;
         for (;;)
         {
@@ -107,8 +113,7 @@ private:
             if (change >= last) // not contracting (a contact switching on and off): damp
                 omega = std::max(0.5 * omega, 1.0 / 64.0);
             last = change;
-            head.restoreNext(saved, sum);
-            e.retry(omega);
+            e.retry(omega, pointwise);
             restore();
         }
         e.finish(); // eq. (8) with the final w^{n+1}
@@ -117,9 +122,6 @@ private:
 
     std::unique_ptr<AirBox> box;
     std::unique_ptr<HeadEmbedding> top, bottom;
-    Membrane* batterHead = nullptr;
-    Membrane* carryHead = nullptr;
-    std::vector<double> batterSaved, carrySaved;
     std::array<AirPoint, DrumAirSpec::maxMics> points {};
     std::array<double, DrumAirSpec::maxMics> pressures {};
     int micCount = 0;

@@ -13,14 +13,15 @@ namespace snaresim
 
 namespace
 {
-// h^2 g_i^T g_j for two patches (index lists are short; no allocation).
-double overlap(const GridDistribution& p, const GridDistribution& q, double h2)
+// h^2 g_i^T R g_j for two patches, R the head's response node by node (Membrane::forceGainAt
+// over forceGain; 1 in vacuum). Index lists are short; no allocation.
+double overlap(const GridDistribution& p, const GridDistribution& q, double h2, const double* response)
 {
     double s = 0.0;
     for (int i = 0; i < p.size; ++i)
         for (int j = 0; j < q.size; ++j)
             if (p.index[(size_t) i] == q.index[(size_t) j])
-                s += p.g[(size_t) i] * q.g[(size_t) j];
+                s += p.g[(size_t) i] * q.g[(size_t) j] * (response ? response[p.index[(size_t) i]] : 1.0);
     return h2 * s;
 }
 } // namespace
@@ -49,7 +50,7 @@ ContactSolveResult MalletContact::step()
     if (m == 0)
         return result;
 
-    // eq. (45): Gamma_ij = k^2/(rho q) h^2 g_i^T g_j + delta_ij k^2/M_i,
+    // eq. (45): Gamma_ij = k^2/(rho q) h^2 g_i^T R g_j + delta_ij k^2/M_i (R: the head's response, 1 in vacuum),
     // a = eta^{n-1}, b = eta^{n-1} - eta*  (eq. 44: r + Gamma psi(r) + b = 0).
     gamma.resize(m, m);
     a.resize(m);
@@ -62,7 +63,7 @@ ContactSolveResult MalletContact::step()
         a(i) = mi.etaPrev;
         b(i) = mi.etaPrev - mi.etaNext;
         for (int j = i; j < m; ++j)
-            gamma(i, j) = gamma(j, i) = batter.forceGain() * overlap(mi.patch(), malletSet[(size_t) members[j]].patch(), h2);
+            gamma(i, j) = gamma(j, i) = batter.forceGain() * overlap(mi.patch(), malletSet[(size_t) members[j]].patch(), h2, batter.responseScale());
         gamma(i, i) += kk / mi.mass();
     }
 

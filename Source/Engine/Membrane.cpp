@@ -112,7 +112,7 @@ void Membrane::applyForce(const GridDistribution& d, double force)
     const double c = forceGain() * force;
     for (int j = 0; j < d.size; ++j)
     {
-        const double dw = c * d.g[(size_t) j];
+        const double dw = response ? c * d.g[(size_t) j] * response[d.index[(size_t) j]] : c * d.g[(size_t) j];
         wNext[(size_t) d.index[(size_t) j]] += dw;
         sumNext += dw;
     }

@@ -35,10 +35,18 @@ public:
     // w^{n+1} from w^n, w^{n-1} with no contact force (eq. 22), with a uniform pressure p
     // (Pa, pushing up) from the cavity acting at time n.
     void computeFree(double pressure_Pa = 0.0);
-    // Add an external force f (N, positive up) spread by g to w^{n+1}: w += k^2/(rho q) g f.
+    // Add an external force f (N, positive up) spread by g to w^{n+1}: w += k^2/(rho q) g f,
+    // times the node's response (below).
     void applyForce(const GridDistribution& d, double force_N);
-    // k^2 / (rho q): how far w^{n+1} moves per unit force density.
+    // k^2 / (rho q): how far w^{n+1} moves per unit force density (in vacuum).
     double forceGain() const { return kk / (rho * q); }
+    // How far w^{n+1} at a node moves per unit force density there: forceGain() times the
+    // node's response, 1 unless a coupling solved with the head's update sets it (the air of
+    // HeadEmbedding: the diagonal of (1 + gamma J^T J)^{-1}). Contacts solve with it.
+    double forceGainAt(int node) const { return response ? forceGain() * response[node] : forceGain(); }
+    // Per node of the padded grid (the owner keeps it alive and in place), nullptr: 1 everywhere.
+    void setResponse(const double* perNode) { response = perNode; }
+    const double* responseScale() const { return response; }
 
     // h^2 g^T w at time n+1, n or n-1.
     double sampleNext(const GridDistribution& d) const { return sample(d, wNext); }
@@ -93,6 +101,7 @@ private:
     double a0 = 0, a1 = 0, b0 = 0, b1 = 0; // stencil coefficients
     std::vector<int> rowBegin, rowEnd;      // columns holding interior nodes, per row
     double sumNext = 0.0;                   // sum(w^{n+1})
+    const double* response = nullptr;       // per-node response to a force (setResponse), or 1
     std::vector<double> wNext, wNow, wPrev;
 };
 

@@ -207,7 +207,6 @@ SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wire
     }
 
     const double h = carry.grid().spacing();
-    const double c = carry.forceGain() / (h * h); // w_c^{n+1} per unit force (N) at a node
     const double gammaS = wires.interiorGain();    // u^{n+1} per unit force density (N/m)
     double* u = wires.uNext.data();
 
@@ -215,6 +214,7 @@ SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wire
     for (int j = 0; j < numSolve; ++j)
     {
         const int g = solveGroups[(size_t) j];
+        const double c = carry.forceGainAt(groupNode[(size_t) g]) / (h * h); // w_c^{n+1} per unit force (N) at the node
         double W0 = carry.nextAt(groupNode[(size_t) g]), cc = c;
         if (groupEndBegin[(size_t) g + 1] > groupEndBegin[(size_t) g])
             eliminateEnds(g, carry, wires, c, W0, cc);
@@ -335,7 +335,7 @@ void SnareContact::solveGroup(int g, Membrane& carry, SnareWires& wires, SnareSo
     double* u = wires.uNext.data();
     double W0 = 0.0, cc = 0.0;
     const double h = carry.grid().spacing();
-    eliminateEnds(g, carry, wires, carry.forceGain() / (h * h), W0, cc);
+    eliminateEnds(g, carry, wires, carry.forceGainAt(node) / (h * h), W0, cc);
     const double coupling = cc * hs; // node response to a contact force density at any of its points
 
     // Collisions (eq. 50) restricted to this node: r_m + gammaS psi_m + coupling sum psi + b_m = 0,

@@ -62,13 +62,16 @@ TEST_CASE("strikes, steps, the snares switch and reset allocate nothing, with th
     CHECK(copy.size() == 5);
 }
 
-TEST_CASE("the drum in the air box steps without allocating", "[energy][realtime][airbox]")
+TEST_CASE("the drum in the air box steps, and takes new head damping, without allocating", "[energy][realtime][airbox]")
 {
     DrumConfig cfg = test::wholeDrum();
     cfg.cavity.model = AirModel::airbox;
     cfg.snares.scheme = GENERATE(CollisionScheme::newton, CollisionScheme::quadratised);
     Drum drum(cfg);
     drum.setEnergyTracking(true);
+    DrumConfig damped = cfg; // a live change that reaches the embeddings' solves (DrumAir::refresh)
+    damped.batter.sigma0_per_s = 2.0 * cfg.batter.sigma0_per_s + 1.0;
+    damped.carry.sigma0_per_s = 2.0 * cfg.carry.sigma0_per_s + 1.0;
     double sum = 0.0;
     drum.step(); // the first step sizes nothing either, but keep the check on the steady state too
     const long before = snaresim::test::countedAllocations.load();
@@ -78,6 +81,8 @@ TEST_CASE("the drum in the air box steps without allocating", "[energy][realtime
         {
             if (n % 400 == 0)
                 drum.playNote(38, 127);
+            if (n == 200)
+                drum.applyLive(damped);
             sum += drum.step();
             sum += drum.energy().balance() + drum.airMicPressure(0);
         }

@@ -1,5 +1,6 @@
-// A head embedded in the air box (eq. 7-8): the coupling conserves the total energy to
-// round-off, and the air's mass lowers the head's (0,1) mode.
+// A head embedded in the air box (eq. 7-8): J conserves volume, the coupling conserves the total
+// energy to round-off on a head finer and one coarser than the air, a force on a head coarser
+// than the air is solved with it in one go, and the air's mass lowers the head's (0,1) mode.
 
 #include "AirBox.h"
 #include "HeadEmbedding.h"
@@ -19,12 +20,14 @@ namespace
 {
 constexpr double fs = 44100.0;
 
-MembraneSpec losslessBatter()
+// coarseness 1: h = 2.98 mm, finer than the air (13.47 mm at 44.1 kHz); 5: h = 14.9 mm, coarser
+MembraneSpec losslessBatter(double coarseness = 1.0)
 {
     MembraneSpec s; // R = 0.1778 m, rho = 0.353 kg/m^2
     s.tension_N_per_m = 3050.0; // (0,1) at 200 Hz in vacuum
     s.sigma0_per_s = 0.0;
     s.sigma1_m2_per_s = 0.0;
+    s.gridCoarseness = coarseness;
     return s;
 }
 
@@ -66,11 +69,50 @@ AirBoxSpec losslessBox()
 }
 } // namespace
 
-TEST_CASE("a head embedded in lossless air conserves the total energy to round-off", "[airbox][embedding][energy]")
+TEST_CASE("the embedding's J conserves volume and links the head's nodes to the air's over it", "[airbox][embedding]")
 {
     const double k = 1.0 / fs;
     AirBox air(losslessBox(), k);
-    Membrane head(losslessBatter(), k);
+    for (double coarseness : { 1.0, 2.85, 5.0 }) // h_m = 2.98, 8.5 (the default batter's), 14.9 mm
+    {
+        Membrane head(losslessBatter(coarseness), k);
+        HeadEmbedding embed(air, head, 0.0);
+        const CircularGrid& g = head.grid();
+        std::printf("embedding: head h = %.2f mm (%d nodes), air h = %.2f mm: %d air nodes over the head, %d groups, J reaches %d "
+                    "head nodes; volume the air sees / the head's %.15f\n",
+                    1e3 * g.spacing(), g.numInterior(), 1e3 * air.spacing(), embed.airNodes(), embed.groups(), embed.headNodes(),
+                    embed.volumeRatio());
+        CHECK(embed.airCoarser() == (air.spacing() >= g.spacing()));
+        CHECK(embed.volumeRatio() == Approx(1.0).margin(1e-12));
+        if (embed.airCoarser())
+        {
+            CHECK(embed.headNodes() == g.numInterior()); // every head node has its air node
+            CHECK(embed.groups() <= embed.airNodes());
+        }
+        else
+        {
+            CHECK(embed.headNodes() == embed.groups()); // one head node a group
+            CHECK(embed.headNodes() > 0.9 * g.numInterior()); // all but nodes at the rim
+        }
+        // the head's response to a force: the diagonal of (1 + gamma J^T J)^{-1}, below 1 where J reaches
+        int reached = 0;
+        for (int j = 0; j < g.numNodes(); ++j)
+            if (g.mask()[(size_t) j] != 0.0 && head.forceGainAt(j) != head.forceGain())
+            {
+                ++reached;
+                CHECK(head.forceGainAt(j) < head.forceGain());
+                CHECK(head.forceGainAt(j) > 0.5 * head.forceGain());
+            }
+        CHECK(reached == embed.headNodes());
+    }
+}
+
+TEST_CASE("a head embedded in lossless air conserves the total energy to round-off", "[airbox][embedding][energy]")
+{
+    const double k = 1.0 / fs;
+    const double coarseness = GENERATE(1.0, 5.0); // the head finer than the air, and coarser
+    AirBox air(losslessBox(), k);
+    Membrane head(losslessBatter(coarseness), k);
     HeadEmbedding embed(air, head, 0.0);
     std::printf("embedding: head h = %.3f mm (%d nodes), air h = %.3f mm (%ld points); %d air nodes over the head, J reaches %d head nodes\n",
                 1e3 * head.grid().spacing(), head.grid().numInterior(), 1e3 * air.spacing(), air.numPoints(), embed.airNodes(),
@@ -93,8 +135,8 @@ TEST_CASE("a head embedded in lossless air conserves the total energy to round-o
         air.advance();
         head.advance();
     }
-    std::printf("embedded head, lossless: total energy relative variation %.3g over %d steps; the air held up to %.3g of it\n", drift,
-                steps, airMax);
+    std::printf("embedded head (h = %.2f mm), lossless: total energy relative variation %.3g over %d steps; the air held up to %.3g of it\n",
+                1e3 * head.grid().spacing(), drift, steps, airMax);
     CHECK(drift < 1e-11);
     CHECK(airMax > 0.05); // the coupling really moved energy into the air
     CHECK(head.isFinite());
@@ -179,4 +221,54 @@ TEST_CASE("the air's mass lowers the head's (0,1) mode", "[airbox][embedding]")
     // Lossless: no slope beyond the beating with the box's air, 1 dB over the fit's span (at most 80 % of the record).
     CHECK(std::abs(rr) < 1.0 / (0.8 * steps / fs));
     CHECK(ra > 10.0);
+}
+
+TEST_CASE("a force on a head coarser than the air is solved with the air in one trial", "[airbox][embedding]")
+{
+    // Each head node has its own air nodes, so (1 + gamma J^T J)^{-1} is diagonal: the force's
+    // response through Membrane::forceGainAt is already the joint solution, and correct() finds
+    // nothing to change. On a head finer than the air a force at one node also pulls the other
+    // nodes of its air node's group, and one more trial settles it.
+    const double k = 1.0 / fs;
+    for (double coarseness : { 5.0, 1.0 })
+    {
+        AirBox air(losslessBox(), k);
+        Membrane head(losslessBatter(coarseness), k);
+        HeadEmbedding embed(air, head, 0.0);
+        pluck01(head);
+        for (int n = 0; n < 50; ++n)
+        {
+            air.computeNext();
+            head.computeFree();
+            embed.step();
+            air.advance();
+            head.advance();
+        }
+        GridDistribution point;
+        point.reserve(head.grid().distributionCapacity(0.0));
+        REQUIRE(head.grid().makeDistribution(0.031, -0.017, 0.0, point)); // bilinear: four nodes
+        air.computeNext();
+        head.computeFree();
+        embed.solveFree();
+        head.applyForce(point, 2.0);
+        const double first = embed.correct() / embed.scale();
+        double second = 0.0;
+        if (first > 1e-15)
+        {
+            embed.retry();
+            head.applyForce(point, 2.0); // a force that does not depend on the head
+            second = embed.correct() / embed.scale();
+        }
+        embed.finish();
+        std::printf("a 2 N force at four nodes, head h = %.2f mm: mismatch after the first trial %.3g of max |w|, after the second %.3g\n",
+                    1e3 * head.grid().spacing(), first, second);
+        if (! embed.airCoarser())
+            CHECK(first <= 1e-15);
+        else
+        {
+            CHECK(first > 1e-12);
+            CHECK(second <= 1e-15);
+        }
+        CHECK(head.isFinite());
+    }
 }
