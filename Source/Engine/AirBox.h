@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <span>
 #include <vector>
 
 namespace snaresim
@@ -46,6 +47,15 @@ struct AirBoxSpec
     double shellRadius_m = 0.1778;
     double shellDepth_m = 0.14;
     ShellEnds shellEnds = ShellEnds::open;
+};
+
+// One end of a cut link, as a layer's update takes it back (AirBox.cpp).
+struct AirCut
+{
+    int local; // the node's index within its padded layer
+    int delta; // its cut neighbour's index offset (+-1, +-sx, +-sx sy)
+    int layer; // the neighbour's layer: 0 below, 1 the same, 2 above
+    int shift; // its offset within that layer
 };
 
 class AirBox
@@ -91,10 +101,24 @@ public:
 
     // Psi^{n+1} from Psi^n, Psi^{n-1}: the whole update, walls, shell and cut links included.
     // Couplings then add their terms to the next level (HeadEmbedding).
+    // The same as beginNext({}) then finishNext().
     void computeNext();
-    void advance(); // rotate time levels
 
-    // Split the update's z-range over this many threads (1: the calling thread only).
+    // The update in two parts, so that a coupling can work on a few layers while the threads
+    // compute the others. beginNext(layers) starts the threads on every layer not listed and
+    // computes the listed ones on the calling thread: when it returns, those layers of next()
+    // are final (cut links, walls and ghosts included). Until finishNext(), the caller may read
+    // and write next() on the listed layers only (and read now() and prev()). finishNext() lends
+    // the calling thread to the layers still left, then waits for the threads: next() is then
+    // complete. The numbers are those of computeNext(), bit for bit, whatever the split.
+    // Allocates only when the list differs from the last call's.
+    void beginNext(std::span<const int> layers);
+    void finishNext();
+
+    void advance(); // rotate time levels (finishes a pending update first)
+
+    // Split the update's layers over this many threads, the calling one included (1: the
+    // calling thread only). Between steps the others spin a short while, then sleep.
     void setThreads(int count);
     int threads() const { return threadCount; }
 
@@ -116,30 +140,50 @@ public:
     double lambda2() const { return l2; }
 
 private:
+    // A thread's three layers of v = a1 Psi^n + b1 Psi^{n-1} (eq. 25 is Psi^{n+1} = 2 Psi^n -
+    // Psi^{n-1} + L v, L the unscaled 7-point Laplacian), kept by padded layer number mod 3.
+    struct Ring
+    {
+        std::vector<double> v;
+        long tag[3] { -1, -1, -1 }; // padded layer held in each slot (-1: none)
+        void invalidate() { tag[0] = tag[1] = tag[2] = -1; }
+    };
+
     void buildWalls();
     void buildShell();
     void cutLink(long a, long b, int axis);
-    void updateLayers(int zBegin, int zEnd); // bulk stencil over layers [zBegin, zEnd)
+    void indexCuts();                         // cut links by layer, each from both ends
+    void setOrder(std::span<const int> layers); // the listed layers and the rest
+    const double* ringLayer(Ring& ring, int pz) const;
+    void updateLayer(int iz, Ring& ring);     // one layer of next(), complete
     void fillGhosts(double* u);
 
     AirBoxSpec spec;
     double k, h, c, rho, sigma;
     double l2 = 0, s = 0;               // lambda^2, c sigma k / h^2
     double a0 = 0, a1 = 0, b0 = 0, b1 = 0;
+    std::array<double, 4> wallGain {}, wallInverse {}; // eq. (51) by number of wall faces m
     std::array<int, 3> n {};
     long sx = 0, sy = 0, total = 0;     // padded strides and size
 
     std::vector<double> store;          // three padded levels
     double* lvl[3] {};                  // next, now, prev
 
-    // cut links (a, b): the bulk stencil included them; corrected afterwards
+    // cut links (a, b): the bulk stencil includes them; each layer takes them back
     std::vector<long> cutA, cutB;
     std::vector<std::uint8_t> cutMask;  // per node: bit axis set when the link to +axis is cut
+    std::vector<AirCut> cuts;           // by layer and row, from both ends: node i loses v_j - v_i
+    std::vector<int> cutRow;            // interior row iy of layer iz: [cutRow[iz ny + iy], cutRow[iz ny + iy + 1])
 
-    // absorbing wall nodes by number of wall faces m = 1, 2, 3
+    // absorbing wall nodes by number of wall faces m = 1, 2, 3 (for stepLoss)
     std::array<std::vector<long>, 3> wallNodes;
 
+    // the layers beginNext() computes on the caller, and the others in the threads' order
+    std::vector<int> earlyArgs, early, rest;
+    bool pending = false;
+
     int threadCount = 1;
+    std::vector<Ring> rings;            // one per thread, the caller's first
     struct Pool;
     std::unique_ptr<Pool> pool;
 };
