@@ -8,6 +8,11 @@
 // -(m c / h) dt. Psi at a node with m wall faces. Energy eq. (36) over the links present,
 // with the sigma term's share; energy^{n+1/2} + stepLoss() = energy^{n-1/2} to round-off.
 // Pressure p = rho_a dt Psi, particle velocity -grad Psi.
+//
+// The update: Psi^{n+1} = 2 Psi^n - Psi^{n-1} + L v, v = (lambda^2 + s) Psi^n - s Psi^{n-1}
+// (s = c sigma k / h^2, L the unscaled 7-point Laplacian), layer by layer: each thread keeps v
+// of three layers in cache, so each level streams from memory once; the layers are independent
+// of each other, so threads take them in any order with the same numbers.
 
 #include <array>
 #include <cstdint>
@@ -122,6 +127,7 @@ public:
     void setThreads(int count);
     int threads() const { return threadCount; }
 
+    // The figures below read every layer: call them after finishNext() (or computeNext()).
     // eq. (36) at n+1/2 from Psi^{n+1}, Psi^n (with the sigma term's share, -(rho sigma k / 4c) |grad dt+ Psi|^2).
     double energy() const;
     // Energy removed from n-1/2 to n+1/2 by sigma_a and the absorbing walls (k q^n >= 0).
@@ -130,7 +136,8 @@ public:
     // p = rho_a (Psi^{n+1} - Psi^n) / k at time n+1/2, trilinear between nodes; 0 outside the grid.
     double pressure(double x_m, double y_m, double z_m) const;
 
-    // Raw levels (padded layout: index()), for couplings and tests.
+    // Raw levels (padded layout: index()), for couplings and tests. Between beginNext() and
+    // finishNext() only the listed layers of next() may be read or written.
     double* next() { return lvl[0]; }
     const double* next() const { return lvl[0]; }
     const double* now() const { return lvl[1]; }
