@@ -33,133 +33,97 @@ SNARESIM_WIDE_VECTOR_CLONES void layerV(double* __restrict v, const double* __re
         v[i] = a1 * u[i] + b1 * up[i];
 }
 
-// What a row needs after the stencil, while it is in the nearest cache: the cut links taken back
-// (shell eq. 6, closed ends, embedded heads), the absorbing walls (eq. 51), the ghost columns.
-struct RowFixes
+// One layer of eq. (25), lossy: out = 2 u - up + L v, L the unscaled 7-point Laplacian over v of
+// this layer (vc), the one below (vb) and the one above (va), i.e. out = a0 u + b0 up + (the six
+// neighbours of v). Pointers at the padded layer's start. The loop runs over the layer's rows as
+// one range, ghost columns included: no row ends to handle (those nodes are then fixed).
+SNARESIM_WIDE_VECTOR_CLONES void layerLossy(double* __restrict out, const double* __restrict u, const double* __restrict up,
+                                            const double* __restrict vc, const double* __restrict vb, const double* __restrict va,
+                                            long first, long end, long sx, double a0, double b0)
+{
+    for (long m = first; m < end; ++m)
+    {
+        const double nb = (vc[m - 1] + vc[m + 1]) + (vc[m - sx] + vc[m + sx]) + (vb[m] + va[m]);
+        out[m] = (a0 * u[m] + b0 * up[m]) + nb;
+    }
+}
+
+// The same, computing on the way the v of one neighbouring layer (vn, from un and upn: the one
+// below or the one above) while the other (vo) is given: the layer and that neighbour's v in one
+// pass. The sum is the same either way round (vo + vn = vb + va exactly). vn's ghost columns
+// come out as mirrors (their Psi are); its ghost rows are the caller's.
+SNARESIM_WIDE_VECTOR_CLONES void layerLossyAhead(double* __restrict out, const double* __restrict u, const double* __restrict up,
+                                                 const double* __restrict vc, const double* __restrict vo, double* __restrict vn,
+                                                 const double* __restrict un, const double* __restrict upn, long first, long end,
+                                                 long sx, double a0, double b0, double a1, double b1)
+{
+    for (long m = first; m < end; ++m)
+    {
+        const double w = a1 * un[m] + b1 * upn[m];
+        vn[m] = w;
+        const double nb = (vc[m - 1] + vc[m + 1]) + (vc[m - sx] + vc[m + sx]) + (vo[m] + w);
+        out[m] = (a0 * u[m] + b0 * up[m]) + nb;
+    }
+}
+
+// The same without sigma_a (v = lambda^2 u): out = a0 u + a1 (6 neighbours of u) - up.
+SNARESIM_WIDE_VECTOR_CLONES void layerLossless(double* __restrict out, const double* __restrict u, const double* __restrict up,
+                                               long first, long end, long sx, long sxy, double a0, double a1)
+{
+    for (long m = first; m < end; ++m)
+    {
+        const double nb = (u[m - 1] + u[m + 1]) + (u[m - sx] + u[m + sx]) + (u[m - sxy] + u[m + sxy]);
+        out[m] = a0 * u[m] + a1 * nb - up[m];
+    }
+}
+
+// What the layer's nodes need after the stencil, row by row while they are cached: the cut
+// links taken back (shell eq. 6, closed ends, embedded heads), the absorbing walls (eq. 51), the
+// ghost columns.
+struct LayerFixes
 {
     const AirCut* cuts;       // the layer's cut-link ends, by row
     const int* rowStart;      // interior row iy's (1..ny) are [rowStart[iy - 1], rowStart[iy])
     const double* gain;       // eq. (51) by number of wall faces m: m lambda / 2
     const double* inverse;    // 1 / (1 + m lambda / 2)
-    int layerFaces;           // wall faces of the layer's own (0, 1; 2 for a box one layer deep); -1: reflecting walls
+    int layerFaces;           // wall faces of the layer itself (0, or 1 at the top or bottom); -1: reflecting walls
 };
 
-// Row iy (1..ny) of the layer at out (r its first interior node); side[0..2] the v of the layers
-// below, this, above (lossy), or nullptr and the link term a1 (u_j - u_i) from u (lossless).
-[[gnu::always_inline]] inline void fixRow(double* __restrict out, const double* __restrict up, const double* const side[3],
-                                          const double* __restrict u, double a1, long r, int iy, int nx, int ny, const RowFixes& f)
+// Rows [rowBegin, rowEnd) of 1..ny. side[0..2]: the v of the layers below, this, above (lossy);
+// or all nullptr and the links' terms a1 (u_j - u_i) from u (lossless).
+SNARESIM_WIDE_VECTOR_CLONES void fixRows(double* __restrict out, const double* __restrict up, const double* const* side,
+                                         const double* __restrict u, double a1, int nx, int ny, long sx, const LayerFixes& f,
+                                         int rowBegin, int rowEnd)
 {
-    const AirCut* c = f.cuts + f.rowStart[iy - 1];
-    const AirCut* end = f.cuts + f.rowStart[iy];
-    if (side[1] != nullptr)
-        for (; c != end; ++c)
-            out[c->local] -= side[c->layer][c->local + c->shift] - side[1][c->local];
-    else
-        for (; c != end; ++c)
-            out[c->local] -= a1 * (u[c->local + c->delta] - u[c->local]);
+    for (int iy = rowBegin; iy < rowEnd; ++iy)
+    {
+        const AirCut* c = f.cuts + f.rowStart[iy - 1];
+        const AirCut* end = f.cuts + f.rowStart[iy];
+        if (side[1] != nullptr)
+            for (; c != end; ++c)
+                out[c->local] -= side[c->layer][c->local + c->shift] - side[1][c->local];
+        else
+            for (; c != end; ++c)
+                out[c->local] -= a1 * (u[c->local + c->delta] - u[c->local]);
 
-    double* __restrict o = out + r;
-    if (f.layerFaces >= 0)
-    {
-        // (1 + m lambda/2) Psi+ = [the update above] + (m lambda/2) Psi-
-        const double* __restrict p = up + r;
-        const int my = f.layerFaces + (iy == 1) + (iy == ny);
-        if (my > 0)
+        double* __restrict o = out + iy * sx + 1;
+        if (f.layerFaces >= 0)
         {
-            const double g = f.gain[my], inv = f.inverse[my];
-            for (int ix = 1; ix < nx - 1; ++ix)
-                o[ix] = (o[ix] + g * p[ix]) * inv;
+            // (1 + m lambda/2) Psi+ = [the update above] + (m lambda/2) Psi-
+            const double* __restrict p = up + iy * sx + 1;
+            const int my = f.layerFaces + (iy == 1) + (iy == ny);
+            if (my > 0)
+            {
+                const double g = f.gain[my], inv = f.inverse[my];
+                for (int ix = 1; ix < nx - 1; ++ix)
+                    o[ix] = (o[ix] + g * p[ix]) * inv;
+            }
+            const double g = f.gain[my + 1], inv = f.inverse[my + 1];
+            o[0] = (o[0] + g * p[0]) * inv;
+            o[nx - 1] = (o[nx - 1] + g * p[nx - 1]) * inv;
         }
-        const double g = f.gain[my + 1], inv = f.inverse[my + 1];
-        o[0] = (o[0] + g * p[0]) * inv;
-        o[nx - 1] = (o[nx - 1] + g * p[nx - 1]) * inv;
-    }
-    o[-1] = o[0];
-    o[nx] = o[nx - 1];
-}
-
-// One layer of eq. (25), lossy: out = 2 u - up + L v, L the unscaled 7-point Laplacian over v of
-// this layer (vc), the one below (vb) and the one above (va), i.e. out = a0 u + b0 up + (the six
-// neighbours of v); then each row's fixes. Pointers at the padded layer's start.
-SNARESIM_WIDE_VECTOR_CLONES void layerLossy(double* __restrict out, const double* __restrict u, const double* __restrict up,
-                                            const double* __restrict vc, const double* __restrict vb, const double* __restrict va,
-                                            int nx, int ny, long sx, double a0, double b0, const RowFixes& f)
-{
-    const double* const side[3] = { vb, vc, va };
-    for (int iy = 1; iy <= ny; ++iy)
-    {
-        const long r = iy * sx + 1;
-        double* __restrict o = out + r;
-        const double* __restrict ur = u + r;
-        const double* __restrict upr = up + r;
-        const double* __restrict v = vc + r;
-        const double* __restrict below = vb + r;
-        const double* __restrict above = va + r;
-        for (int m = 0; m < nx; ++m)
-        {
-            const double nb = (v[m - 1] + v[m + 1]) + (v[m - sx] + v[m + sx]) + (below[m] + above[m]);
-            o[m] = (a0 * ur[m] + b0 * upr[m]) + nb;
-        }
-        fixRow(out, up, side, nullptr, 0.0, r, iy, nx, ny, f);
-    }
-}
-
-// The same, computing on the way the v of one neighbouring layer (vn, from un and upn: the one
-// below when down, else the one above) while the other (vo) is given: the layer's rows and that
-// neighbour's in one pass. The sum is the same either way round (vo + vn = vb + va exactly);
-// vn's ghosts are copies, as layerV's are.
-SNARESIM_WIDE_VECTOR_CLONES void layerLossyAhead(double* __restrict out, const double* __restrict u, const double* __restrict up,
-                                                 const double* __restrict vc, const double* __restrict vo, double* __restrict vn,
-                                                 const double* __restrict un, const double* __restrict upn, bool down, int nx, int ny,
-                                                 long sx, double a0, double b0, double a1, double b1, const RowFixes& f)
-{
-    const double* const side[3] = { down ? vn : vo, vc, down ? vo : vn };
-    for (int iy = 1; iy <= ny; ++iy)
-    {
-        const long r = iy * sx + 1;
-        double* __restrict o = out + r;
-        const double* __restrict ur = u + r;
-        const double* __restrict upr = up + r;
-        const double* __restrict v = vc + r;
-        const double* __restrict other = vo + r;
-        double* __restrict ahead = vn + r;
-        const double* __restrict uAhead = un + r;
-        const double* __restrict upAhead = upn + r;
-        for (int m = 0; m < nx; ++m)
-        {
-            const double w = a1 * uAhead[m] + b1 * upAhead[m];
-            ahead[m] = w;
-            const double nb = (v[m - 1] + v[m + 1]) + (v[m - sx] + v[m + sx]) + (other[m] + w);
-            o[m] = (a0 * ur[m] + b0 * upr[m]) + nb;
-        }
-        ahead[-1] = ahead[0];
-        ahead[nx] = ahead[nx - 1];
-        fixRow(out, up, side, nullptr, 0.0, r, iy, nx, ny, f);
-    }
-    for (long i = 0; i < sx; ++i)
-    {
-        vn[i] = vn[sx + i];
-        vn[(ny + 1) * sx + i] = vn[ny * sx + i];
-    }
-}
-
-// The same without sigma_a (v = lambda^2 u): out = a0 u + a1 (6 neighbours of u) - up.
-SNARESIM_WIDE_VECTOR_CLONES void layerLossless(double* __restrict out, const double* __restrict u, const double* __restrict up, int nx,
-                                               int ny, long sx, long sxy, double a0, double a1, const RowFixes& f)
-{
-    const double* const side[3] = { nullptr, nullptr, nullptr };
-    for (int iy = 1; iy <= ny; ++iy)
-    {
-        const long r = iy * sx + 1;
-        double* __restrict o = out + r;
-        const double* __restrict v = u + r;
-        const double* __restrict upr = up + r;
-        for (int m = 0; m < nx; ++m)
-        {
-            const double nb = (v[m - 1] + v[m + 1]) + (v[m - sx] + v[m + sx]) + (v[m - sxy] + v[m + sxy]);
-            o[m] = a0 * v[m] + a1 * nb - upr[m];
-        }
-        fixRow(out, up, side, u, a1, r, iy, nx, ny, f);
+        o[-1] = o[0];
+        o[nx] = o[nx - 1];
     }
 }
 
@@ -550,7 +514,7 @@ const double* AirBox::ringLayer(Ring& ring, int pz) const
 
 // Layer iz of Psi^{n+1}, complete: eq. (25) with every link, then row by row the cut links
 // taken back (shell eq. 6, closed ends, embedded heads), the absorbing walls (eq. 51) and the
-// ghosts that mirror the layer (links through the walls carry nothing). Reads Psi^n and Psi^{n-1}
+// ghosts that mirror the layer (links through the walls carry nothing), while it is cached. Reads Psi^n and Psi^{n-1}
 // only, so the layers can be computed in any order, by any thread, with the same numbers
 // (v is a1 Psi^n + b1 Psi^{n-1} however it is reached: the file is built without contraction).
 void AirBox::updateLayer(int iz, Ring& ring)
@@ -561,29 +525,43 @@ void AirBox::updateLayer(int iz, Ring& ring)
     double* out = lvl[0] + base;
     const double* u = lvl[1] + base;
     const double* up = lvl[2] + base;
-    const RowFixes fixes { cuts.data(), cutRow.data() + (size_t) iz * (size_t) n[1], wallGain.data(), wallInverse.data(),
-                           spec.walls == AirWalls::absorbing ? (iz == 0) + (iz == n[2] - 1) : -1 };
+    const LayerFixes fixes { cuts.data(), cutRow.data() + (size_t) iz * (size_t) n[1], wallGain.data(), wallInverse.data(),
+                             spec.walls == AirWalls::absorbing ? (iz == 0) + (iz == n[2] - 1) : -1 };
+    // Rows 1..ny as one range, ghost columns included (no row ends in the loops), then fixed.
+    const long first = sx, end = (n[1] + 1) * sx;
     if (s != 0.0)
     {
         // v of this layer and both neighbours: from the ring, or computed; a run of layers
-        // upwards (or downwards) computes the next layer's v with its own rows
-        const double* vc = ringLayer(ring, pz);
+        // upwards (or downwards) computes the next layer's v with the layer itself
+        const double* side[3] { nullptr, ringLayer(ring, pz), nullptr };
         const auto held = [&](int q) { return ring.tag[q % 3] == q; };
         if (held(pz - 1) && held(pz + 1))
-            layerLossy(out, u, up, vc, ring.v.data() + ((pz - 1) % 3) * sxy, ring.v.data() + ((pz + 1) % 3) * sxy, n[0], n[1], sx, a0,
-                       b0, fixes);
+        {
+            side[0] = ring.v.data() + ((pz - 1) % 3) * sxy;
+            side[2] = ring.v.data() + ((pz + 1) % 3) * sxy;
+            layerLossy(out, u, up, side[1], side[0], side[2], first, end, sx, a0, b0);
+        }
         else
         {
             const bool down = held(pz + 1);
             const int q = down ? pz - 1 : pz + 1; // the layer whose v is computed here
             const double* vo = ringLayer(ring, down ? pz + 1 : pz - 1);
             double* vn = ring.v.data() + (q % 3) * sxy;
-            layerLossyAhead(out, u, up, vc, vo, vn, lvl[1] + q * sxy, lvl[2] + q * sxy, down, n[0], n[1], sx, a0, b0, a1, b1, fixes);
+            layerLossyAhead(out, u, up, side[1], vo, vn, lvl[1] + q * sxy, lvl[2] + q * sxy, first, end, sx, a0, b0, a1, b1);
+            std::copy(vn + sx, vn + 2 * sx, vn); // vn's ghost rows
+            std::copy(vn + n[1] * sx, vn + (n[1] + 1) * sx, vn + (n[1] + 1) * sx);
             ring.tag[q % 3] = q;
+            side[0] = down ? vn : vo;
+            side[2] = down ? vo : vn;
         }
+        fixRows(out, up, side, nullptr, 0.0, n[0], n[1], sx, fixes, 1, n[1] + 1);
     }
     else
-        layerLossless(out, u, up, n[0], n[1], sx, sxy, a0, a1, fixes);
+    {
+        const double* none[3] { nullptr, nullptr, nullptr };
+        layerLossless(out, u, up, first, end, sx, sxy, a0, a1);
+        fixRows(out, up, none, u, a1, n[0], n[1], sx, fixes, 1, n[1] + 1);
+    }
 
     // the ghost rows, and the ghost layers beyond the top and bottom ones
     std::copy(out + sx, out + 2 * sx, out);
@@ -612,7 +590,10 @@ void AirBox::setThreads(int count)
         pool = std::make_unique<Pool>(*this, threadCount);
 }
 
-// The listed layers (sorted, each once) and the others in order.
+// The listed layers (sorted, each once), and the others in the threads' order: those below the
+// highest listed layer upwards, then those above it downwards. The workers start at the front;
+// the caller, done with the listed layers, takes from the back, right above the last layer it
+// computed, whose v it still holds (each thread's run of layers computes two layers' v to start).
 void AirBox::setOrder(std::span<const int> layers)
 {
     earlyArgs.assign(layers.begin(), layers.end());
@@ -626,7 +607,14 @@ void AirBox::setOrder(std::span<const int> layers)
     early.clear();
     rest.clear();
     for (int iz = 0; iz < n[2]; ++iz)
-        (listed[(size_t) iz] ? early : rest).push_back(iz);
+        if (listed[(size_t) iz])
+            early.push_back(iz);
+    const int top = early.empty() ? n[2] : early.back();
+    for (int iz = 0; iz < top; ++iz)
+        if (! listed[(size_t) iz])
+            rest.push_back(iz);
+    for (int iz = n[2] - 1; iz > top; --iz)
+        rest.push_back(iz);
 }
 
 void AirBox::beginNext(std::span<const int> layers)
@@ -634,11 +622,17 @@ void AirBox::beginNext(std::span<const int> layers)
     finishNext();
     if (! std::equal(layers.begin(), layers.end(), earlyArgs.begin(), earlyArgs.end()))
         setOrder(layers);
-    pending = true;
     Ring& ring = rings[0];
     ring.invalidate(); // new levels
-    if (pool)
-        pool->start((int) rest.size());
+    if (! pool)
+    {
+        // one thread: every layer now, in one run upwards (the listed ones are final, as asked)
+        for (int iz = 0; iz < n[2]; ++iz)
+            updateLayer(iz, ring);
+        return;
+    }
+    pending = true;
+    pool->start((int) rest.size());
     for (int iz : early)
         updateLayer(iz, ring);
 }
@@ -648,14 +642,8 @@ void AirBox::finishNext()
     if (! pending)
         return;
     pending = false;
-    if (pool)
-    {
-        pool->help(rings[0]);
-        pool->join();
-    }
-    else
-        for (int iz : rest)
-            updateLayer(iz, rings[0]);
+    pool->help(rings[0]);
+    pool->join();
 }
 
 void AirBox::computeNext()

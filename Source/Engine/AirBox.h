@@ -115,8 +115,9 @@ public:
     // are final (cut links, walls and ghosts included). Until finishNext(), the caller may read
     // and write next() on the listed layers only (and read now() and prev()). finishNext() lends
     // the calling thread to the layers still left, then waits for the threads: next() is then
-    // complete. The numbers are those of computeNext(), bit for bit, whatever the split.
-    // Allocates only when the list differs from the last call's.
+    // complete. The numbers are those of computeNext(), bit for bit, whatever the split. On one
+    // thread beginNext() computes every layer (in one run: cheapest) and finishNext() has nothing
+    // left to do. Allocates only when the list differs from the last call's.
     void beginNext(std::span<const int> layers);
     void finishNext();
 
