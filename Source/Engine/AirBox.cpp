@@ -3,11 +3,13 @@
 #include "VectorClones.h"
 
 #include <algorithm>
-#include <barrier>
+#include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 #include <thread>
+#include <utility>
 
 namespace snaresim
 {
@@ -23,62 +25,247 @@ std::string fmt(double v)
     return b;
 }
 
-// One row of eq. (25), lossy: out = a0 u + a1 (6 neighbours of u) + b0 up + b1 (6 neighbours of up).
-SNARESIM_VECTOR_CLONES void rowLossy(double* __restrict out, const double* __restrict u, const double* __restrict up, int count,
-                                     long sx, long sxy, double a0, double a1, double b0, double b1)
+// v = a1 Psi^n + b1 Psi^{n-1} over one padded layer (its ghosts included: they mirror).
+SNARESIM_WIDE_VECTOR_CLONES void layerV(double* __restrict v, const double* __restrict u, const double* __restrict up, long count,
+                                        double a1, double b1)
 {
-    for (int m = 0; m < count; ++m)
+    for (long i = 0; i < count; ++i)
+        v[i] = a1 * u[i] + b1 * up[i];
+}
+
+// One layer of eq. (25), lossy: out = 2 u - up + L v, L the unscaled 7-point Laplacian over v of
+// this layer (vc), the one below (vb) and the one above (va), i.e. out = a0 u + b0 up + (the six
+// neighbours of v). Pointers at the padded layer's start. The loop runs over the layer's rows as
+// one range, ghost columns included: no row ends to handle (those nodes are then fixed).
+SNARESIM_WIDE_VECTOR_CLONES void layerLossy(double* __restrict out, const double* __restrict u, const double* __restrict up,
+                                            const double* __restrict vc, const double* __restrict vb, const double* __restrict va,
+                                            long first, long end, long sx, double a0, double b0)
+{
+    for (long m = first; m < end; ++m)
     {
-        const double nb = (u[m - 1] + u[m + 1]) + (u[m - sx] + u[m + sx]) + (u[m - sxy] + u[m + sxy]);
-        const double nbp = (up[m - 1] + up[m + 1]) + (up[m - sx] + up[m + sx]) + (up[m - sxy] + up[m + sxy]);
-        out[m] = a0 * u[m] + a1 * nb + b0 * up[m] + b1 * nbp;
+        const double nb = (vc[m - 1] + vc[m + 1]) + (vc[m - sx] + vc[m + sx]) + (vb[m] + va[m]);
+        out[m] = (a0 * u[m] + b0 * up[m]) + nb;
     }
 }
 
-// The same without sigma_a: out = a0 u + a1 (6 neighbours of u) - up.
-SNARESIM_VECTOR_CLONES void rowLossless(double* __restrict out, const double* __restrict u, const double* __restrict up, int count,
-                                        long sx, long sxy, double a0, double a1)
+// The same, computing on the way the v of one neighbouring layer (vn, from un and upn: the one
+// below or the one above) while the other (vo) is given: the layer and that neighbour's v in one
+// pass. The sum is the same either way round (vo + vn = vb + va exactly). vn's ghost columns
+// come out as mirrors (their Psi are); its ghost rows are the caller's.
+SNARESIM_WIDE_VECTOR_CLONES void layerLossyAhead(double* __restrict out, const double* __restrict u, const double* __restrict up,
+                                                 const double* __restrict vc, const double* __restrict vo, double* __restrict vn,
+                                                 const double* __restrict un, const double* __restrict upn, long first, long end,
+                                                 long sx, double a0, double b0, double a1, double b1)
 {
-    for (int m = 0; m < count; ++m)
+    for (long m = first; m < end; ++m)
+    {
+        const double w = a1 * un[m] + b1 * upn[m];
+        vn[m] = w;
+        const double nb = (vc[m - 1] + vc[m + 1]) + (vc[m - sx] + vc[m + sx]) + (vo[m] + w);
+        out[m] = (a0 * u[m] + b0 * up[m]) + nb;
+    }
+}
+
+// The same without sigma_a (v = lambda^2 u): out = a0 u + a1 (6 neighbours of u) - up.
+SNARESIM_WIDE_VECTOR_CLONES void layerLossless(double* __restrict out, const double* __restrict u, const double* __restrict up,
+                                               long first, long end, long sx, long sxy, double a0, double a1)
+{
+    for (long m = first; m < end; ++m)
     {
         const double nb = (u[m - 1] + u[m + 1]) + (u[m - sx] + u[m + sx]) + (u[m - sxy] + u[m + sxy]);
         out[m] = a0 * u[m] + a1 * nb - up[m];
     }
 }
+
+// What the layer's nodes need after the stencil, row by row while they are cached: the cut
+// links taken back (shell eq. 6, closed ends, embedded heads), the absorbing walls (eq. 51), the
+// ghost columns.
+struct LayerFixes
+{
+    const AirCut* cuts;       // the layer's cut-link ends, by row
+    const int* rowStart;      // interior row iy's (1..ny) are [rowStart[iy - 1], rowStart[iy])
+    const double* gain;       // eq. (51) by number of wall faces m: m lambda / 2
+    const double* inverse;    // 1 / (1 + m lambda / 2)
+    int layerFaces;           // wall faces of the layer itself (0, or 1 at the top or bottom); -1: reflecting walls
+};
+
+// Rows [rowBegin, rowEnd) of 1..ny. side[0..2]: the v of the layers below, this, above (lossy);
+// or all nullptr and the links' terms a1 (u_j - u_i) from u (lossless).
+SNARESIM_WIDE_VECTOR_CLONES void fixRows(double* __restrict out, const double* __restrict up, const double* const* side,
+                                         const double* __restrict u, double a1, int nx, int ny, long sx, const LayerFixes& f,
+                                         int rowBegin, int rowEnd)
+{
+    for (int iy = rowBegin; iy < rowEnd; ++iy)
+    {
+        const AirCut* c = f.cuts + f.rowStart[iy - 1];
+        const AirCut* end = f.cuts + f.rowStart[iy];
+        if (side[1] != nullptr)
+            for (; c != end; ++c)
+                out[c->local] -= side[c->layer][c->local + c->shift] - side[1][c->local];
+        else
+            for (; c != end; ++c)
+                out[c->local] -= a1 * (u[c->local + c->delta] - u[c->local]);
+
+        double* __restrict o = out + iy * sx + 1;
+        if (f.layerFaces >= 0)
+        {
+            // (1 + m lambda/2) Psi+ = [the update above] + (m lambda/2) Psi-
+            const double* __restrict p = up + iy * sx + 1;
+            const int my = f.layerFaces + (iy == 1) + (iy == ny);
+            if (my > 0)
+            {
+                const double g = f.gain[my], inv = f.inverse[my];
+                for (int ix = 1; ix < nx - 1; ++ix)
+                    o[ix] = (o[ix] + g * p[ix]) * inv;
+            }
+            const double g = f.gain[my + 1], inv = f.inverse[my + 1];
+            o[0] = (o[0] + g * p[0]) * inv;
+            o[nx - 1] = (o[nx - 1] + g * p[nx - 1]) * inv;
+        }
+        o[-1] = o[0];
+        o[nx] = o[nx - 1];
+    }
+}
+
+inline void relax()
+{
+#if defined(__x86_64__) || defined(__i386__)
+    __builtin_ia32_pause();
+#endif
+}
+
+// Spin-then-block: spins a bounded number of times on the atomic, then sleeps in
+// std::atomic::wait (a futex), until done(value) holds. A busy machine is not starved by a
+// thread that waits long; a short wait costs no system call.
+constexpr int spinLimit = 2048; // about 40 us of pause instructions on the build machine
+
+template <class T, class Done>
+T awaitValue(const std::atomic<T>& a, Done done)
+{
+    T x = a.load(std::memory_order_acquire);
+    for (int i = 0; i < spinLimit && ! done(x); ++i)
+    {
+        relax();
+        x = a.load(std::memory_order_acquire);
+    }
+    while (! done(x))
+    {
+        a.wait(x, std::memory_order_acquire);
+        x = a.load(std::memory_order_acquire);
+    }
+    return x;
+}
+
+// A range of positions in the threads' order, [front, back), claimed one layer at a time from
+// the front (its owner) or the back (a thread that has finished its own): one atomic word.
+struct alignas(64) Range
+{
+    std::atomic<std::uint64_t> word { 0 };
+    static std::uint64_t pack(std::uint32_t front, std::uint32_t back) { return (std::uint64_t) back << 32 | front; }
+    void set(std::uint32_t front, std::uint32_t back) { word.store(pack(front, back), std::memory_order_relaxed); }
+    std::uint32_t left() const
+    {
+        const std::uint64_t w = word.load(std::memory_order_relaxed);
+        return (std::uint32_t) (w >> 32) - (std::uint32_t) w;
+    }
+    // the position claimed, or -1 when the range is empty
+    long claim(bool fromFront)
+    {
+        std::uint64_t w = word.load(std::memory_order_relaxed);
+        for (;;)
+        {
+            const auto front = (std::uint32_t) w, back = (std::uint32_t) (w >> 32);
+            if (front >= back)
+                return -1;
+            const std::uint64_t next = fromFront ? pack(front + 1, back) : pack(front, back - 1);
+            if (word.compare_exchange_weak(w, next, std::memory_order_relaxed))
+                return fromFront ? (long) front : (long) back - 1;
+        }
+    }
+};
 } // namespace
 
-// Workers that each run a slice of the layers, started and joined by two barriers per step.
+// Workers 1..count-1. Each step (beginNext) hands worker t a contiguous range of the layers
+// not computed on the caller, which it works through from the front; a thread whose range is
+// done (the caller in finishNext included) takes layers from the back of the fullest range.
 struct AirBox::Pool
 {
-    Pool(AirBox& box, int count) : start(count), done(count)
+    Pool(AirBox& b, int count) : box(b), ranges((size_t) count - 1)
     {
         for (int t = 1; t < count; ++t)
-            workers.emplace_back([this, &box, t, count] {
-                for (;;)
-                {
-                    start.arrive_and_wait();
-                    if (stop)
-                        return;
-                    const auto [b, e] = slice(box, t, count);
-                    box.updateLayers(b, e);
-                    done.arrive_and_wait();
-                }
-            });
+            workers.emplace_back([this, t] { run(t); });
     }
     ~Pool()
     {
-        stop = true;
-        start.arrive_and_wait();
+        stop.store(true, std::memory_order_relaxed);
+        generation.fetch_add(1, std::memory_order_release);
+        generation.notify_all();
         for (auto& w : workers)
             w.join();
     }
-    static std::pair<int, int> slice(const AirBox& box, int t, int count)
+
+    // Splits the positions 0..count-1 over the workers and wakes them.
+    void start(int count)
     {
-        const int nz = box.n[2];
-        return { nz * t / count, nz * (t + 1) / count };
+        const auto w = (std::uint32_t) ranges.size();
+        for (std::uint32_t t = 0; t < w; ++t)
+            ranges[t].set((std::uint32_t) ((std::uint64_t) count * t / w), (std::uint32_t) ((std::uint64_t) count * (t + 1) / w));
+        finished.store(0, std::memory_order_relaxed);
+        generation.fetch_add(1, std::memory_order_release);
+        generation.notify_all(); // no system call unless a worker sleeps
     }
-    std::barrier<> start, done;
-    bool stop = false;
+
+    // Layers from the back of the fullest range until none is left.
+    void help(Ring& ring)
+    {
+        for (;;)
+        {
+            Range* fullest = nullptr;
+            std::uint32_t most = 0;
+            for (auto& r : ranges)
+                if (const auto left = r.left(); left > most)
+                {
+                    most = left;
+                    fullest = &r;
+                }
+            if (fullest == nullptr)
+                return;
+            const long p = fullest->claim(false);
+            if (p >= 0)
+                box.updateLayer(box.rest[(size_t) p], ring);
+        }
+    }
+
+    void join()
+    {
+        const auto w = (int) ranges.size();
+        awaitValue(finished, [w](int f) { return f == w; });
+    }
+
+    void run(int t)
+    {
+        std::uint32_t seen = 0;
+        Ring& ring = box.rings[(size_t) t];
+        for (;;)
+        {
+            seen = awaitValue(generation, [seen](std::uint32_t g) { return g != seen; });
+            if (stop.load(std::memory_order_relaxed))
+                return;
+            ring.invalidate(); // new levels
+            Range& own = ranges[(size_t) t - 1];
+            for (long p; (p = own.claim(true)) >= 0;)
+                box.updateLayer(box.rest[(size_t) p], ring);
+            help(ring);
+            finished.fetch_add(1, std::memory_order_release);
+            finished.notify_one();
+        }
+    }
+
+    AirBox& box;
+    std::vector<Range> ranges; // worker t's is ranges[t - 1]
+    std::atomic<std::uint32_t> generation { 0 };
+    std::atomic<int> finished { 0 };
+    std::atomic<bool> stop { false };
     std::vector<std::thread> workers;
 };
 
@@ -146,13 +333,28 @@ AirBox::AirBox(const AirBoxSpec& sp, double timeStep)
     a1 = l2 + s;
     b0 = -(1.0 - 6.0 * s);
     b1 = -s;
+    const double lambda = c * k / h;
+    for (int m = 1; m <= 3; ++m)
+    {
+        wallGain[(size_t) m] = 0.5 * m * lambda;
+        wallInverse[(size_t) m] = 1.0 / (1.0 + wallGain[(size_t) m]);
+    }
 
     buildWalls();
     if (sp.shell)
         buildShell();
+    indexCuts();
+    early.reserve((size_t) n[2]);
+    rest.reserve((size_t) n[2]);
+    setOrder({});
+    rings.resize(1);
+    rings[0].v.assign((size_t) (3 * sx * sy), 0.0);
 }
 
-AirBox::~AirBox() = default;
+AirBox::~AirBox()
+{
+    finishNext(); // then the pool (declared last) stops and joins its threads
+}
 
 void AirBox::buildWalls()
 {
@@ -226,7 +428,34 @@ std::vector<long> AirBox::cutDisc(int layer, double cx, double cy, double radius
                 nodes.push_back(index(ix, iy, layer));
             }
         }
+    indexCuts();
     return nodes;
+}
+
+// Each cut link (a, b) from both ends, by layer and row: node a loses v_b - v_a, node b v_a - v_b.
+void AirBox::indexCuts()
+{
+    finishNext();
+    const long sxy = sx * sy;
+    const auto key = [&](long i) { return (size_t) (i / sxy - 1) * (size_t) n[1] + (size_t) ((i % sxy) / sx - 1); };
+    const size_t rows = (size_t) n[2] * (size_t) n[1];
+    cutRow.assign(rows + 1, 0);
+    for (size_t j = 0; j < cutA.size(); ++j)
+    {
+        ++cutRow[key(cutA[j]) + 1];
+        ++cutRow[key(cutB[j]) + 1];
+    }
+    for (size_t k = 0; k < rows; ++k)
+        cutRow[k + 1] += cutRow[k];
+    cuts.assign(2 * cutA.size(), AirCut {});
+    std::vector<int> fill(cutRow.begin(), cutRow.end() - 1);
+    for (size_t j = 0; j < cutA.size(); ++j)
+        for (const auto& [i, other] : { std::pair { cutA[j], cutB[j] }, std::pair { cutB[j], cutA[j] } })
+        {
+            const long d = other - i;
+            const int layer = d == sxy ? 2 : d == -sxy ? 0 : 1;
+            cuts[(size_t) fill[key(i)]++] = { (int) (i % sxy), (int) d, layer, (int) (layer == 1 ? d : 0) };
+        }
 }
 
 void AirBox::setPotential(const std::function<double(double, double, double)>& f)
@@ -245,6 +474,7 @@ void AirBox::setPotential(const std::function<double(double, double, double)>& f
 
 void AirBox::clear()
 {
+    finishNext();
     std::fill(store.begin(), store.end(), 0.0);
 }
 
@@ -268,75 +498,163 @@ void AirBox::fillGhosts(double* u)
     std::copy(u + n[2] * sxy, u + (n[2] + 1) * sxy, u + (n[2] + 1) * sxy);
 }
 
-void AirBox::updateLayers(int zBegin, int zEnd)
+// v of padded layer pz in the ring, computed unless the ring holds it already.
+const double* AirBox::ringLayer(Ring& ring, int pz) const
 {
     const long sxy = sx * sy;
-    double* out = lvl[0];
-    const double* u = lvl[1];
-    const double* up = lvl[2];
-    for (int iz = zBegin + 1; iz <= zEnd; ++iz)
-        for (int iy = 1; iy <= n[1]; ++iy)
+    const int slot = pz % 3;
+    double* v = ring.v.data() + slot * sxy;
+    if (ring.tag[slot] != pz)
+    {
+        layerV(v, lvl[1] + pz * sxy, lvl[2] + pz * sxy, sxy, a1, b1);
+        ring.tag[slot] = pz;
+    }
+    return v;
+}
+
+// Layer iz of Psi^{n+1}, complete: eq. (25) with every link, then row by row the cut links
+// taken back (shell eq. 6, closed ends, embedded heads), the absorbing walls (eq. 51) and the
+// ghosts that mirror the layer (links through the walls carry nothing), while it is cached. Reads Psi^n and Psi^{n-1}
+// only, so the layers can be computed in any order, by any thread, with the same numbers
+// (v is a1 Psi^n + b1 Psi^{n-1} however it is reached: the file is built without contraction).
+void AirBox::updateLayer(int iz, Ring& ring)
+{
+    const long sxy = sx * sy;
+    const int pz = iz + 1;
+    const long base = pz * sxy;
+    double* out = lvl[0] + base;
+    const double* u = lvl[1] + base;
+    const double* up = lvl[2] + base;
+    const LayerFixes fixes { cuts.data(), cutRow.data() + (size_t) iz * (size_t) n[1], wallGain.data(), wallInverse.data(),
+                             spec.walls == AirWalls::absorbing ? (iz == 0) + (iz == n[2] - 1) : -1 };
+    // Rows 1..ny as one range, ghost columns included (no row ends in the loops), then fixed.
+    const long first = sx, end = (n[1] + 1) * sx;
+    if (s != 0.0)
+    {
+        // v of this layer and both neighbours: from the ring, or computed; a run of layers
+        // upwards (or downwards) computes the next layer's v with the layer itself
+        const double* side[3] { nullptr, ringLayer(ring, pz), nullptr };
+        const auto held = [&](int q) { return ring.tag[q % 3] == q; };
+        if (held(pz - 1) && held(pz + 1))
         {
-            const long r = iz * sxy + iy * sx + 1;
-            if (s != 0.0)
-                rowLossy(out + r, u + r, up + r, n[0], sx, sxy, a0, a1, b0, b1);
-            else
-                rowLossless(out + r, u + r, up + r, n[0], sx, sxy, a0, a1);
+            side[0] = ring.v.data() + ((pz - 1) % 3) * sxy;
+            side[2] = ring.v.data() + ((pz + 1) % 3) * sxy;
+            layerLossy(out, u, up, side[1], side[0], side[2], first, end, sx, a0, b0);
         }
+        else
+        {
+            const bool down = held(pz + 1);
+            const int q = down ? pz - 1 : pz + 1; // the layer whose v is computed here
+            const double* vo = ringLayer(ring, down ? pz + 1 : pz - 1);
+            double* vn = ring.v.data() + (q % 3) * sxy;
+            layerLossyAhead(out, u, up, side[1], vo, vn, lvl[1] + q * sxy, lvl[2] + q * sxy, first, end, sx, a0, b0, a1, b1);
+            std::copy(vn + sx, vn + 2 * sx, vn); // vn's ghost rows
+            std::copy(vn + n[1] * sx, vn + (n[1] + 1) * sx, vn + (n[1] + 1) * sx);
+            ring.tag[q % 3] = q;
+            side[0] = down ? vn : vo;
+            side[2] = down ? vo : vn;
+        }
+        fixRows(out, up, side, nullptr, 0.0, n[0], n[1], sx, fixes, 1, n[1] + 1);
+    }
+    else
+    {
+        const double* none[3] { nullptr, nullptr, nullptr };
+        layerLossless(out, u, up, first, end, sx, sxy, a0, a1);
+        fixRows(out, up, none, u, a1, n[0], n[1], sx, fixes, 1, n[1] + 1);
+    }
+
+    // the ghost rows, and the ghost layers beyond the top and bottom ones
+    std::copy(out + sx, out + 2 * sx, out);
+    std::copy(out + n[1] * sx, out + (n[1] + 1) * sx, out + (n[1] + 1) * sx);
+    if (iz == 0)
+        std::copy(out, out + sxy, out - sxy);
+    if (iz == n[2] - 1)
+        std::copy(out, out + sxy, out + sxy);
 }
 
 void AirBox::setThreads(int count)
 {
+    finishNext();
     count = std::max(1, count);
     if (count == threadCount)
         return;
     pool.reset();
     threadCount = std::min(count, std::max(1, n[2]));
+    rings.resize((size_t) threadCount);
+    for (auto& r : rings)
+    {
+        r.v.assign((size_t) (3 * sx * sy), 0.0);
+        r.invalidate();
+    }
     if (threadCount > 1)
         pool = std::make_unique<Pool>(*this, threadCount);
 }
 
+// The listed layers (sorted, each once), and the others in the threads' order: those below the
+// highest listed layer upwards, then those above it downwards. The workers start at the front;
+// the caller, done with the listed layers, takes from the back, right above the last layer it
+// computed, whose v it still holds (each thread's run of layers computes two layers' v to start).
+void AirBox::setOrder(std::span<const int> layers)
+{
+    earlyArgs.assign(layers.begin(), layers.end());
+    std::vector<std::uint8_t> listed((size_t) n[2], 0);
+    for (int l : layers)
+    {
+        if (l < 0 || l >= n[2])
+            throw std::invalid_argument("air box: layer " + std::to_string(l) + " is outside the box");
+        listed[(size_t) l] = 1;
+    }
+    early.clear();
+    rest.clear();
+    for (int iz = 0; iz < n[2]; ++iz)
+        if (listed[(size_t) iz])
+            early.push_back(iz);
+    const int top = early.empty() ? n[2] : early.back();
+    for (int iz = 0; iz < top; ++iz)
+        if (! listed[(size_t) iz])
+            rest.push_back(iz);
+    for (int iz = n[2] - 1; iz > top; --iz)
+        rest.push_back(iz);
+}
+
+void AirBox::beginNext(std::span<const int> layers)
+{
+    finishNext();
+    if (! std::equal(layers.begin(), layers.end(), earlyArgs.begin(), earlyArgs.end()))
+        setOrder(layers);
+    Ring& ring = rings[0];
+    ring.invalidate(); // new levels
+    if (! pool)
+    {
+        // one thread: every layer now, in one run upwards (the listed ones are final, as asked)
+        for (int iz = 0; iz < n[2]; ++iz)
+            updateLayer(iz, ring);
+        return;
+    }
+    pending = true;
+    pool->start((int) rest.size());
+    for (int iz : early)
+        updateLayer(iz, ring);
+}
+
+void AirBox::finishNext()
+{
+    if (! pending)
+        return;
+    pending = false;
+    pool->help(rings[0]);
+    pool->join();
+}
+
 void AirBox::computeNext()
 {
-    // eq. (25) everywhere, every link present (walls through the mirrored ghosts)
-    if (pool)
-    {
-        pool->start.arrive_and_wait();
-        const auto [b, e] = Pool::slice(*this, 0, threadCount);
-        updateLayers(b, e);
-        pool->done.arrive_and_wait();
-    }
-    else
-        updateLayers(0, n[2]);
-
-    // take back the cut links' terms (shell eq. 6, closed ends, embedded heads)
-    double* out = lvl[0];
-    const double* u = lvl[1];
-    const double* up = lvl[2];
-    for (size_t j = 0; j < cutA.size(); ++j)
-    {
-        const long a = cutA[j], b = cutB[j];
-        const double t = a1 * (u[b] - u[a]) + b1 * (up[b] - up[a]);
-        out[a] -= t;
-        out[b] += t;
-    }
-
-    // eq. (51): (1 + m lambda/2) Psi+ = [the update above] + (m lambda/2) Psi-
-    if (spec.walls == AirWalls::absorbing)
-    {
-        const double lambda = c * k / h;
-        for (int m = 1; m <= 3; ++m)
-        {
-            const double g = 0.5 * m * lambda, inv = 1.0 / (1.0 + g);
-            for (long i : wallNodes[(size_t) m - 1])
-                out[i] = (out[i] + g * up[i]) * inv;
-        }
-    }
-    fillGhosts(out);
+    beginNext({});
+    finishNext();
 }
 
 void AirBox::advance()
 {
+    finishNext();
     double* t = lvl[2];
     lvl[2] = lvl[1];
     lvl[1] = lvl[0];

@@ -307,6 +307,7 @@ void Drum::stepCouplingsInAir()
     stats.airCapped += (onBatter.capped ? 1 : 0) + (onCarry.capped ? 1 : 0);
     stats.airTrials += onBatter.trials + onCarry.trials;
     stats.maxAirMismatch = std::max({ stats.maxAirMismatch, onBatter.mismatch, onCarry.mismatch });
+    box.joinAir(); // the rest of the air's update (step 1) ran meanwhile on the air's threads
     box.listen();
 }
 

@@ -65,8 +65,17 @@ public:
     const HeadEmbedding& batterEmbedding() const { return *top; }
     const HeadEmbedding& carryEmbedding() const { return *bottom; }
 
-    // The air's own update (eq. 25), before the heads' free updates are coupled.
-    void computeFree() { box->computeNext(); }
+    // The air's own update (eq. 25), before the heads' free updates are coupled. The two
+    // layers around each head (the embeddings read and write only those) are final when it
+    // returns; the air box's threads compute the others meanwhile, until joinAir().
+    void computeFree()
+    {
+        const int d = top->layer(), e = bottom->layer();
+        const int layers[4] = { e, e + 1, d, d + 1 };
+        box->beginNext(layers);
+    }
+    // The rest of the air's update (after both heads are solved, before anything else reads it).
+    void joinAir() { box->finishNext(); }
 
     // One head with its air and its contacts (after every free update): trial() solves the
     // contacts from the free state and writes the head's w^{n+1}; restore() puts the contacts'

@@ -1,5 +1,6 @@
 #include "Benchmark.h"
 
+#include "AirSpeed.h"
 #include "DrumPlayer.h"
 
 #include <juce_audio_basics/juce_audio_basics.h>
@@ -9,6 +10,8 @@
 #include <cmath>
 #include <stdexcept>
 #include <vector>
+
+#include <sys/resource.h>
 
 namespace snaresim::render
 {
@@ -48,7 +51,7 @@ RenderJob benchmarkJob(const RenderJob& job)
     return result;
 }
 
-RenderStats benchmarkDrum(const ParameterSet& params, const RenderPlan& plan, int blockSize, int repeats,
+RenderStats benchmarkDrum(const ParameterSet& params, const DrumConfig& config, const RenderPlan& plan, int blockSize, int repeats,
                           const std::function<void(std::span<const float>)>& audio)
 {
     using Clock = std::chrono::steady_clock;
@@ -63,6 +66,7 @@ RenderStats benchmarkDrum(const ParameterSet& params, const RenderPlan& plan, in
     std::vector<Clock::duration> fastest(numBlocks, Clock::duration::max());
     Clock::duration rawWorst {}, slowestRun {};
 
+    const bool airBox = config.cavity.model == AirModel::airbox;
     RenderStats stats;
     BenchFigures figures;
     double peak = 0.0, sumSquares = 0.0;
@@ -72,7 +76,10 @@ RenderStats benchmarkDrum(const ParameterSet& params, const RenderPlan& plan, in
     {
         // A new player and drum each run: every run computes the same blocks.
         DrumPlayer player([&params] { return params; });
-        player.prepareAndStart(plan.sampleRate_Hz, params);
+        if (airBox)
+            player.startWith(std::make_unique<Drum>(config), params); // the air options (--threads, --box, ...) apply
+        else
+            player.prepareAndStart(plan.sampleRate_Hz, params);
         player.stopBuilding();  // the parameters never change: nothing to build meanwhile
         if (player.drum() == nullptr)
             throw std::runtime_error("the drum cannot be built at this sample rate");
@@ -159,6 +166,17 @@ RenderStats benchmarkDrum(const ParameterSet& params, const RenderPlan& plan, in
     figures.worstBlockRaw_s = std::chrono::duration<double>(rawWorst).count();
     figures.slowestRun_s = std::chrono::duration<double>(slowestRun).count();
     figures.blockBudget_s = (double) blockSize / plan.sampleRate_Hz;
+
+    // The peak resident size of the runs (before the air box below is built).
+    rusage usage {};
+    if (getrusage(RUSAGE_SELF, &usage) == 0)
+        figures.peakResident_bytes = 1024.0 * (double) usage.ru_maxrss; // kilobytes on Linux
+
+    if (airBox)
+    {
+        AirBox air(config.airBoxSpec(), 1.0 / plan.sampleRate_Hz); // the drum's grid, shell and closed ends
+        figures.air = measureAirSpeed(air, config.air.threads);
+    }
     stats.bench = figures;
     return stats;
 }

@@ -40,9 +40,12 @@ RenderJob benchmarkJob(const RenderJob& job);
 
 // Renders the plan `repeats` times, each on a new player and drum, as described above.
 // audio (may be empty) receives every block of the first run's mix. The result's `bench`
-// holds the block timings (each block's fastest run, and the raw extremes) and the grid
-// figures; the other figures are of the first run.
-RenderStats benchmarkDrum(const ParameterSet& params, const RenderPlan& plan, int blockSize, int repeats,
+// holds the block timings (each block's fastest run, and the raw extremes), the grid
+// figures and the process's peak resident size; the other figures are of the first run.
+// With the air box (config's model AirModel::airbox) the player plays a drum built from config
+// (so the air options, --threads among them, apply), and after the runs the air box's update is
+// timed against a bare 7-point stencil on the same grid (bench->air).
+RenderStats benchmarkDrum(const ParameterSet& params, const DrumConfig& config, const RenderPlan& plan, int blockSize, int repeats,
                           const std::function<void(std::span<const float>)>& audio);
 
 } // namespace snaresim::render

@@ -651,8 +651,17 @@ Benchmark:
                         and --mic other than mix are refused. The summary / JSON adds
                         realtime_factor (audio s / wall s), mean_block_ms, worst_block_ms,
                         block_budget_ms (one block's duration), worst_block_share (worst /
-                        budget), block_size, blocks and the grid (batter_grid_spacing_m,
-                        carry_grid_spacing_m, snare_points). Non-finite output: exit 1.
+                        budget), block_size, blocks, the grid (batter_grid_spacing_m,
+                        carry_grid_spacing_m, snare_points),
+                        compute_seconds_per_audio_second and peak_resident_mb. With
+                        --model airbox the drum is built with the air options (--threads,
+                        --box, ...), and afterwards the air update is timed against a
+                        bare 7-point stencil on the same grid (double, one thread):
+                        air_points, air_spacing_m, air_threads, air_precision,
+                        air_updates_per_second (one thread),
+                        air_updates_per_second_threads, bare_stencil_updates_per_second,
+                        bare_stencil_float_updates_per_second, air_to_bare_ratio (one
+                        thread) and air_to_bare_ratio_threads. Non-finite output: exit 1.
   --block-size N        samples per block, 1..8192 (default 64)
   --bench-scenario S    the strikes when no --hit / --midi is given: default = velocity
                         127 every 0.5 s for --seconds (default 2); roll = 16 strikes at

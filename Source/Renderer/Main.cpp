@@ -268,7 +268,7 @@ int benchmark(const RenderJob& commandLineJob)
         wav = std::make_unique<WavWriter>(*wavFile, plan.sampleRate_Hz, 1);
     }
 
-    const auto stats = benchmarkDrum(params, plan, job.selectedBlockSize(), job.selectedRepeats(), [&](std::span<const float> block) {
+    const auto stats = benchmarkDrum(params, config, plan, job.selectedBlockSize(), job.selectedRepeats(), [&](std::span<const float> block) {
         throwIfInterrupted(); // once per block, outside the timed section
         if (wav)
         {

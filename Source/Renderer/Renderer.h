@@ -7,6 +7,7 @@
 #include "Microphones.h"
 #include "RenderPlan.h"
 
+#include "AirSpeed.h"
 #include "Drum.h"
 #include "EnergyLedger.h"
 #include "Parameters.h"
@@ -39,6 +40,10 @@ struct BenchFigures
     int batterNodes = 0;               // interior nodes of the batter / carry grids
     int carryNodes = 0;
     int snarePoints = 0;               // SnareContact::numPoints(): wire points that collide
+    double peakResident_bytes = 0.0;   // the process's peak resident size after the runs (getrusage ru_maxrss)
+    // The air box (--model airbox): its update against a bare 7-point stencil on its grid,
+    // timed after the runs in the same process (AirSpeed.h).
+    std::optional<AirSpeed> air;
 };
 
 struct RenderStats

@@ -109,6 +109,21 @@ std::string formatJson(const RenderReport& r)
         object->setProperty("batter_nodes", b->batterNodes);
         object->setProperty("carry_nodes", b->carryNodes);
         object->setProperty("snare_points", b->snarePoints);
+        object->setProperty("compute_seconds_per_audio_second", r.stats.wallSeconds / secondsRendered(r));
+        object->setProperty("peak_resident_mb", b->peakResident_bytes / (1024.0 * 1024.0));
+        if (const auto& a = b->air)
+        {
+            object->setProperty("air_points", (juce::int64) a->points);
+            object->setProperty("air_spacing_m", a->spacing_m);
+            object->setProperty("air_threads", a->threads);
+            object->setProperty("air_precision", "double");
+            object->setProperty("air_updates_per_second", a->airRate());
+            object->setProperty("air_updates_per_second_threads", a->airThreadsRate());
+            object->setProperty("bare_stencil_updates_per_second", a->bareRate());
+            object->setProperty("bare_stencil_float_updates_per_second", a->bareFloatRate());
+            object->setProperty("air_to_bare_ratio", a->airRate() / a->bareRate());
+            object->setProperty("air_to_bare_ratio_threads", a->airThreadsRate() / a->bareRate());
+        }
     }
 
     return juce::JSON::toString(root, true).toStdString() + "\n";
@@ -139,6 +154,17 @@ std::string benchSummary(const RenderReport& r, const BenchFigures& b)
     s += formatted("grid: batter h %.4g mm (%d nodes), carry h %.4g mm (%d nodes), %d snare points\n",
                    1000.0 * b.batterGridSpacing_m, b.batterNodes, 1000.0 * b.carryGridSpacing_m, b.carryNodes,
                    b.snarePoints);
+    if (const auto& a = b.air)
+    {
+        s += formatted("air box: %lld points, h %.4g mm, %.3g s of compute per s of audio (the whole drum, %d thread%s)\n",
+                       (long long) a->points, 1000.0 * a->spacing_m, r.stats.wallSeconds / secondsRendered(r), a->threads,
+                       a->threads == 1 ? "" : "s");
+        s += formatted("air update %.3g updates/s on 1 thread, %.3g on %d; bare 7-point stencil %.3g (double, 1 thread; float "
+                       "%.3g); air / bare %.3f (%.3f on %d)\n",
+                       a->airRate(), a->airThreadsRate(), a->threads, a->bareRate(), a->bareFloatRate(), a->airRate() / a->bareRate(),
+                       a->airThreadsRate() / a->bareRate(), a->threads);
+    }
+    s += formatted("peak resident size %.1f MB\n", b.peakResident_bytes / (1024.0 * 1024.0));
     s += formatted("peak %.6g, rms %.6g, non-finite samples %lld\n", r.stats.peak, r.stats.rms,
                    (long long) r.stats.nonfiniteSamples);
     if (r.output)

@@ -27,7 +27,12 @@ struct RenderReport
 
 // One line, ends with a newline. Non-finite numbers are written as null. With --bench
 // (stats.bench) it adds mean_block_ms, worst_block_ms, block_budget_ms, worst_block_share,
-// block_size, blocks, bench_scenario, bench_short and the grid figures.
+// block_size, blocks, bench_scenario, bench_short, the grid figures,
+// compute_seconds_per_audio_second and peak_resident_mb; with the air box also air_points,
+// air_spacing_m, air_threads, air_precision, air_updates_per_second (one thread),
+// air_updates_per_second_threads, bare_stencil_updates_per_second (double, one thread, the
+// same grid), bare_stencil_float_updates_per_second, air_to_bare_ratio and
+// air_to_bare_ratio_threads.
 std::string formatJson(const RenderReport& report);
 
 // A few lines, ends with a newline.

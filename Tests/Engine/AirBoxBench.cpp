@@ -1,17 +1,19 @@
 // Speed of the air box update against a bare 7-point stencil on the same grid, measured in
-// the same run. Prints figures; nothing about time can fail.
+// the same run (measureAirSpeed, AirSpeed.h: the kinds timed in turns, each its fastest round).
+// Prints figures; nothing about time can fail.
 //   cmake --build build --target airbox_bench && ./build/Tests/Engine/airbox_bench
 
 #include "AirBox.h"
+#include "AirSpeed.h"
 #include "HeadEmbedding.h"
 #include "Membrane.h"
-#include "VectorClones.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <thread>
 #include <vector>
 
 using namespace snaresim;
@@ -19,26 +21,6 @@ using namespace snaresim;
 namespace
 {
 constexpr double fs = 44100.0;
-
-// The bare loop: out = a0 u + a1 (6 neighbours) - up over every node of a padded n^3 grid.
-SNARESIM_VECTOR_CLONES void bareStencil(double* __restrict out, const double* __restrict u, const double* __restrict up, int n,
-                                        double a0, double a1)
-{
-    const long sx = n + 2, sxy = sx * sx;
-    for (int iz = 1; iz <= n; ++iz)
-        for (int iy = 1; iy <= n; ++iy)
-        {
-            const long r = iz * sxy + iy * sx + 1;
-            const double* v = u + r;
-            const double* vp = up + r;
-            double* o = out + r;
-            for (int m = 0; m < n; ++m)
-            {
-                const double nb = (v[m - 1] + v[m + 1]) + (v[m - sx] + v[m + sx]) + (v[m - sxy] + v[m + sxy]);
-                o[m] = a0 * v[m] + a1 * nb - vp[m];
-            }
-        }
-}
 
 // Best time per step of `steps` steps, over `repeats` runs.
 double secondsPerStep(const std::function<void()>& step, int steps, int repeats)
@@ -57,59 +39,48 @@ double secondsPerStep(const std::function<void()>& step, int steps, int repeats)
 
 void report(const char* what, double points, double perStep)
 {
-    std::printf("  %-58s %7.3f us/step  %6.3g updates/s  %6.3f s per s of audio\n", what, 1e6 * perStep, points / perStep,
+    std::printf("  %-58s %7.2f us/step  %8.3g updates/s  %6.3f s per s of audio\n", what, 1e6 * perStep, points / perStep,
                 perStep * fs);
 }
-void benchCube()
+
+void reportSpeed(const AirSpeed& a, const char* air)
 {
-    const int steps = 2000, repeats = 5;
+    const double points = (double) a.points;
+    report("bare 7-point stencil, double (no walls, no sigma_a)", points, a.bareStep_s);
+    report("bare 7-point stencil, float", points, a.bareFloatStep_s);
+    std::printf("  %s, 1 thread: %.2f us/step  %.3g updates/s  %.3f s per s of audio\n", air, 1e6 * a.airStep_s, a.airRate(),
+                a.airStep_s * fs);
+    std::printf("  %s, %d threads: %.2f us/step  %.3g updates/s  %.3f s per s of audio\n", air, a.threads, 1e6 * a.airThreadsStep_s,
+                a.airThreadsRate(), a.airThreadsStep_s * fs);
+    std::printf("  air / bare (updates per second): %.3f on 1 thread, %.3f on %d threads; float bare / double bare %.2f "
+                "(%d rounds of %d steps, each kind its fastest round)\n",
+                a.airRate() / a.bareRate(), a.airThreadsRate() / a.bareRate(), a.threads, a.bareFloatRate() / a.bareRate(), a.rounds,
+                a.steps);
+}
+
+void benchCube(int threads)
+{
     AirBoxSpec spec; // 0.6 m cube, sigma_a = 2e-6 m, absorbing walls, the default drum's shell (open)
     AirBox box(spec, 1.0 / fs);
     const int n = box.nx();
     const double points = (double) box.numPoints();
-    std::printf("air box benchmark: 0.6 m cube at 44.1 kHz, h = %.3f mm, %d^3 = %.0f points, %d cut links (shell), %d steps, best of %d\n",
-                1e3 * box.spacing(), n, points, box.numCutLinks(), steps, repeats);
-
-    // the bare loop on arrays of the same padded size
-    const size_t total = (size_t) (n + 2) * (n + 2) * (n + 2);
-    std::vector<double> a(total, 0.0), b(total, 0.0), c(total, 0.0);
-    for (size_t i = 0; i < total; ++i)
-        a[i] = b[i] = 1e-3 * std::sin(0.001 * (double) i);
-    double* lv[3] = { c.data(), a.data(), b.data() };
-    const double l2 = 1.0 / 3.0;
-    const double bare = secondsPerStep(
-        [&] {
-            bareStencil(lv[0], lv[1], lv[2], n, 2.0 - 6.0 * l2, l2);
-            std::swap(lv[2], lv[1]);
-            std::swap(lv[1], lv[0]);
-        },
-        steps, repeats);
-
-    box.setPotential([](double x, double y, double z) { return std::exp(-(x * x + y * y + z * z) / 0.002); });
-    const auto airStep = [&] {
-        box.computeNext();
-        box.advance();
-    };
-    const double full = secondsPerStep(airStep, steps, repeats);
+    std::printf("air box benchmark: 0.6 m cube at 44.1 kHz, h = %.3f mm, %d^3 = %.0f points, %d cut links (shell), absorbing walls\n",
+                1e3 * box.spacing(), n, points, box.numCutLinks());
+    reportSpeed(measureAirSpeed(box, threads, 9), "AirBox::computeNext, sigma_a = 2e-6");
 
     AirBoxSpec lossless = spec;
     lossless.sigma_m = 0.0;
     AirBox plain(lossless, 1.0 / fs);
-    plain.setPotential([](double x, double y, double z) { return std::exp(-(x * x + y * y + z * z) / 0.002); });
-    const double noSigma = secondsPerStep(
-        [&] {
-            plain.computeNext();
-            plain.advance();
-        },
-        steps, repeats);
+    const AirSpeed noSigma = measureAirSpeed(plain, threads, 5);
+    std::printf("  AirBox::computeNext, sigma_a = 0: %.2f us/step on 1 thread (%.3f of the bare stencil), %.2f on %d threads\n",
+                1e6 * noSigma.airStep_s, noSigma.airRate() / noSigma.bareRate(), 1e6 * noSigma.airThreadsStep_s, noSigma.threads);
 
-    box.setThreads(2);
-    const double twoThreads = secondsPerStep(airStep, steps, repeats);
-    box.setThreads(1);
-
+    const int repeats = 5;
     const double energy = secondsPerStep([&] { (void) box.energy(); }, 200, repeats);
+    report("AirBox::energy (eq. 36), once", points, energy);
 
     // one head embedded: the coupled step against the air and the head alone
+    const int steps = 2000;
     AirBoxSpec open = spec;
     open.shell = false;
     AirBox air(open, 1.0 / fs);
@@ -138,38 +109,19 @@ void benchCube()
         },
         steps, repeats);
     inEmbed /= steps * repeats;
-
-    report("bare 7-point stencil, lossless, no walls", points, bare);
-    report("AirBox::computeNext, sigma_a = 2e-6, absorbing walls, shell", points, full);
-    report("AirBox::computeNext, sigma_a = 0, absorbing walls, shell", points, noSigma);
-    report("AirBox::computeNext, sigma_a = 2e-6, 2 threads", points, twoThreads);
-    report("AirBox::energy (eq. 36), once", points, energy);
     std::printf("  batter alone (%d nodes): %.3f us/step; air (no shell) + batter + HeadEmbedding::step: %.3f us/step (%.3f in the embedding), %.3f s per s of audio\n",
                 head.grid().numInterior(), 1e6 * headAlone, 1e6 * coupled, 1e6 * inEmbed, coupled * fs);
-    std::printf("  AirBox (sigma_a > 0) / bare: %.2f; sigma_a = 0 / bare: %.2f; 2 threads speed-up %.2f\n", full / bare, noSigma / bare,
-                full / twoThreads);
     if (! std::isfinite(box.energy()))
         std::printf("  the air box's energy is not finite\n");
 }
 
-void benchLargeCube()
+void benchLargeCube(int threads)
 {
-    const int steps = 400, repeats = 3;
     AirBoxSpec spec;
     spec.size_m = { 1.0, 1.0, 1.0 };
     AirBox box(spec, 1.0 / fs);
-    box.setPotential([](double x, double y, double z) { return std::exp(-(x * x + y * y + z * z) / 0.002); });
-    const double points = (double) box.numPoints();
-    const auto airStep = [&] {
-        box.computeNext();
-        box.advance();
-    };
-    std::printf("air box benchmark: 1 m cube at 44.1 kHz, %d^3 = %.0f points, %d steps, best of %d\n", box.nx(), points, steps, repeats);
-    const double one = secondsPerStep(airStep, steps, repeats);
-    box.setThreads(2);
-    const double two = secondsPerStep(airStep, steps, repeats);
-    report("AirBox::computeNext, sigma_a = 2e-6, 1 thread", points, one);
-    report("AirBox::computeNext, sigma_a = 2e-6, 2 threads", points, two);
+    std::printf("air box benchmark: 1 m cube at 44.1 kHz, %d^3 = %ld points\n", box.nx(), box.numPoints());
+    reportSpeed(measureAirSpeed(box, threads, 5), "AirBox::computeNext, sigma_a = 2e-6");
     if (! std::isfinite(box.energy()))
         std::printf("  the air box's energy is not finite\n");
 }
@@ -177,7 +129,8 @@ void benchLargeCube()
 
 int main()
 {
-    benchCube();
-    benchLargeCube();
+    const int threads = (int) std::max(2u, std::thread::hardware_concurrency());
+    benchCube(threads);
+    benchLargeCube(threads);
     return 0;
 }

@@ -273,3 +273,53 @@ TEST_CASE("the air update split over threads gives the same numbers", "[airbox]"
     two.setThreads(1);
     CHECK(two.threads() == 1);
 }
+
+TEST_CASE("the update in two parts gives the listed layers first, and the same numbers as in one", "[airbox]")
+{
+    AirBoxSpec spec;
+    spec.size_m = { 0.45, 0.45, 0.4 };
+    const int threads = GENERATE(1, 2, 3);
+    AirBox whole(spec, 1.0 / fs), parts(spec, 1.0 / fs);
+    parts.setThreads(threads);
+    REQUIRE(parts.threads() == threads);
+    // two heads' pairs of layers, as DrumAir lists them, and a closed disc between one pair
+    const int lower = parts.layerBelow(-0.07), upper = parts.layerBelow(0.07);
+    const int layers[4] = { lower, lower + 1, upper, upper + 1 };
+    whole.cutDisc(upper, 0.0, 0.0, 0.15);
+    parts.cutDisc(upper, 0.0, 0.0, 0.15);
+    const auto f = gaussian(0.03, -0.02, 0.05, 0.03);
+    whole.setPotential(f);
+    parts.setPotential(f);
+    double worstListed = 0.0, worst = 0.0;
+    for (int step = 0; step < 100; ++step)
+    {
+        whole.computeNext();
+        parts.beginNext(layers);
+        // the listed layers are final before finishNext (the threads may still be computing the rest)
+        for (int l : layers)
+            for (int iy = 0; iy < whole.ny(); ++iy)
+                for (int ix = 0; ix < whole.nx(); ++ix)
+                {
+                    const long i = whole.index(ix, iy, l);
+                    worstListed = std::max(worstListed, std::abs(whole.next()[i] - parts.next()[i]));
+                }
+        // a coupling's write on the listed layers, as a head's embedding makes it
+        const long centre = whole.index(whole.nx() / 2, whole.ny() / 2, upper);
+        whole.next()[centre] += 1e-3;
+        parts.next()[centre] += 1e-3;
+        parts.finishNext();
+        for (int iz = -1; iz <= whole.nz(); ++iz) // ghost layers included
+            for (int iy = -1; iy <= whole.ny(); ++iy)
+                for (int ix = -1; ix <= whole.nx(); ++ix)
+                {
+                    if ((ix < 0 || ix >= whole.nx()) + (iy < 0 || iy >= whole.ny()) + (iz < 0 || iz >= whole.nz()) > 1)
+                        continue; // the ghosts' edges and corners are never read
+                    const long i = whole.index(ix, iy, iz);
+                    worst = std::max(worst, std::abs(whole.next()[i] - parts.next()[i]));
+                }
+        whole.advance();
+        parts.advance();
+    }
+    CHECK(worstListed == 0.0);
+    CHECK(worst == 0.0);
+}

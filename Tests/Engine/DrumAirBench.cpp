@@ -1,16 +1,16 @@
 // Compute time of the whole drum inside the air box (AirModel::airbox) at 44.1 kHz: seconds of
-// compute per second of audio, beside the same drum with the cavity, split into the air's own
-// update, the rest of the unstruck drum (heads, embeddings) and what a strike adds (the
-// contacts solved jointly with each head's air). Prints figures; nothing about time can fail.
+// compute per second of audio, beside the same drum with the cavity, on one thread and on every
+// core, and the air's own update against a bare 7-point stencil on the drum's grid, measured in
+// the same run (AirSpeed.h). Prints figures; nothing about time can fail.
 //   cmake --build build --target drumair_bench && ./build/Tests/Engine/drumair_bench
 
-#include "AirBox.h"
+#include "AirSpeed.h"
 #include "Drum.h"
-#include "HeadEmbedding.h"
-#include "Membrane.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <thread>
 
 using namespace snaresim;
 
@@ -23,11 +23,13 @@ struct Run
     double meanTrials = 0.0;     // contact trials per head and step
 };
 
-// One second of audio after a fortissimo strike (the mallet, then the snares chattering).
-Run timeDrum(const DrumConfig& cfg, double seconds)
+// `seconds` of audio after a fortissimo strike (the mallet, then the snares chattering), or of
+// the drum at rest (the air, both heads and both embeddings; one contact trial per head and step).
+Run timeDrum(const DrumConfig& cfg, double seconds, bool struck)
 {
     Drum drum(cfg);
-    drum.playNote(38, 127);
+    if (struck)
+        drum.playNote(38, 127);
     const int steps = (int) (seconds * cfg.sampleRate_Hz);
     double sink = 0.0;
     const auto t0 = std::chrono::steady_clock::now();
@@ -39,36 +41,6 @@ Run timeDrum(const DrumConfig& cfg, double seconds)
     const auto& st = drum.solverStats();
     return { s / seconds, st.maxAirTrials, (double) st.airTrials / (2.0 * steps) };
 }
-
-// The drum in its box, unstruck (the air, the heads, the embeddings: one trial per head, no force).
-double timeQuiet(const DrumConfig& cfg, double seconds)
-{
-    Drum drum(cfg);
-    const int steps = (int) (seconds * cfg.sampleRate_Hz);
-    const auto t0 = std::chrono::steady_clock::now();
-    for (int n = 0; n < steps; ++n)
-        drum.step();
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / seconds;
-}
-
-// The air's own update alone (eq. 25), on the same grid with the same links cut (shell and heads).
-double timeAir(const DrumConfig& cfg, double seconds)
-{
-    const double k = 1.0 / cfg.sampleRate_Hz, H = cfg.cavity.shellDepth_m;
-    AirBox air(cfg.airBoxSpec(), k);
-    air.setThreads(cfg.air.threads);
-    Membrane batter(cfg.batter, k), carry(cfg.carry, k);
-    const HeadEmbedding top(air, batter, 0.5 * H), bottom(air, carry, -0.5 * H); // cut the heads' links
-    air.setPotential([](double x, double y, double z) { return 1e-3 * (x + 0.5 * y - z); });
-    const int steps = (int) (seconds * cfg.sampleRate_Hz);
-    const auto t0 = std::chrono::steady_clock::now();
-    for (int n = 0; n < steps; ++n)
-    {
-        air.computeNext();
-        air.advance();
-    }
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / seconds;
-}
 } // namespace
 
 int main()
@@ -76,31 +48,35 @@ int main()
     DrumConfig cfg; // the schema's default drum (20 wires, quadratised solve, Quality 2)
     cfg.sampleRate_Hz = 44100.0;
     const double seconds = 1.0;
+    const int cores = (int) std::max(2u, std::thread::hardware_concurrency());
 
     DrumConfig cavity = cfg;
     cavity.cavity.model = AirModel::cavity;
     std::printf("whole default drum, 44.1 kHz, %.1f s after a fortissimo strike; seconds of compute per second of audio:\n",
                 seconds);
-    std::printf("  cavity model:                 %.3f\n", timeDrum(cavity, seconds).perAudioSecond);
+    std::printf("  cavity model:                 %.3f\n", timeDrum(cavity, seconds, true).perAudioSecond);
 
-    for (int threads : { 1, 2 })
+    DrumConfig box = cfg;
+    box.cavity.model = AirModel::airbox;
     {
-        DrumConfig box = cfg;
-        box.cavity.model = AirModel::airbox;
+        AirBox air(box.airBoxSpec(), 1.0 / cfg.sampleRate_Hz);
+        const AirSpeed a = measureAirSpeed(air, cores);
+        std::printf("  the drum's air box %.2f m, h_a %.2f mm, %ld points: bare 7-point stencil %.3g updates/s (double; float %.3g); "
+                    "air update %.3g updates/s on 1 thread (%.3f of the bare), %.3g on %d threads (%.3f)\n",
+                    cfg.air.size_m[0], 1e3 * a.spacing_m, a.points, a.bareRate(), a.bareFloatRate(), a.airRate(),
+                    a.airRate() / a.bareRate(), a.airThreadsRate(), a.threads, a.airThreadsRate() / a.bareRate());
+    }
+    for (int threads : { 1, cores })
+    {
         box.air.threads = threads;
-        Drum probe(box);
-        const auto& air = probe.airBox().air();
-        const Run struck = timeDrum(box, seconds);
-        const double quiet = timeQuiet(box, seconds), alone = timeAir(box, seconds);
-        std::printf("  air box %.2f m, h_a %.2f mm, %ld points, %d thread%s: %.3f struck (contact trials per head and step: "
-                    "mean %.3f, most %d); %.3f unstruck (air, heads, embeddings); %.3f the air's own update alone\n",
-                    cfg.air.size_m[0], 1e3 * air.spacing(), air.numPoints(), threads, threads > 1 ? "s" : "", struck.perAudioSecond,
-                    struck.meanTrials, struck.maxTrials, quiet, alone);
+        const Run struck = timeDrum(box, seconds, true);
+        const double quiet = timeDrum(box, seconds, false).perAudioSecond;
+        std::printf("  air box, %d thread%s: %.3f struck (contact trials per head and step: mean %.3f, most %d); %.3f unstruck (air, heads, embeddings)\n",
+                    threads, threads > 1 ? "s" : "", struck.perAudioSecond, struck.meanTrials, struck.maxTrials, quiet);
         DrumConfig newton = box;
         newton.snares.scheme = CollisionScheme::newton;
-        const Run n = timeDrum(newton, seconds);
-        std::printf("      the same with the Newton snare solve: %.3f struck (trials mean %.3f, most %d)\n", n.perAudioSecond, n.meanTrials,
-                    n.maxTrials);
+        const Run n = timeDrum(newton, seconds, true);
+        std::printf("      the same with the Newton snare solve: %.3f struck (trials mean %.3f, most %d)\n", n.perAudioSecond, n.meanTrials, n.maxTrials);
     }
     return 0;
 }

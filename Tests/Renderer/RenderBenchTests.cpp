@@ -4,6 +4,7 @@
 
 #include "RendererTestSupport.h"
 
+#include "AirBox.h"
 #include "Cavity.h"
 #include "Membrane.h"
 
@@ -110,6 +111,12 @@ TEST_CASE("bench: --json reports the block timings with sane values", "[renderer
     CHECK(number(json, "carry_nodes") == drum.carry().grid().numInterior());
     CHECK(number(json, "snare_points") == config.snares.count * (drum.snareWires().intervals() - 1));
 
+    // The whole drum's compute per second of audio, and the process's peak size; no air box figures.
+    CHECK(number(json, "compute_seconds_per_audio_second") == Approx(wall / 0.25));
+    CHECK(number(json, "peak_resident_mb") > 1.0);
+    CHECK(json["air_points"].isVoid());
+    CHECK(json["air_updates_per_second"].isVoid());
+
     CHECK(number(json, "nonfinite_samples") == 0);
     CHECK(number(json, "peak") > 0.0);
     // The peak is the engine's: the same drum, MIDI note 38 at velocity 127 at sample 0, the
@@ -123,6 +130,52 @@ TEST_CASE("bench: --json reports the block timings with sane values", "[renderer
             peak = std::max(peak, std::abs((float) played.step()));
         CHECK(number(json, "peak") == Approx(peak).epsilon(1e-9));
     }
+}
+
+TEST_CASE("bench: with the air box it reports the air update against a bare stencil, the drum's compute and the peak size", "[renderer][bench][airbox]")
+{
+    TempDir dir;
+    // 22.05 kHz: the default 0.6 m box on a grid of twice the spacing (eq. 41), about 12 000 points
+    const auto json = benchJson(dir, { "--model", "airbox", "--sample-rate", "22050", "--seconds", "0.02", "--bench-repeat", "1",
+                                       "--threads", "2", "--set", "grid_coarseness=3" });
+    CHECK(number(json, "samples") == 441);
+    CHECK(number(json, "nonfinite_samples") == 0);
+
+    // The size of the air: the drum's box (its config, as the renderer makes it) on its grid.
+    snaresim::ParameterSet params;
+    params.set(snaresim::ParamId::gridCoarseness, 3.0);
+    params.set(snaresim::ParamId::airModel, (double) snaresim::AirModel::airbox);
+    const auto config = snaresim::makeDrumConfig(params, 22050.0);
+    const snaresim::AirBox box(config.airBoxSpec(), 1.0 / 22050.0);
+    CHECK(number(json, "air_points") == box.numPoints());
+    CHECK(number(json, "air_spacing_m") == Approx(box.spacing()).epsilon(1e-12));
+    CHECK(box.numPoints() > 5000);
+    CHECK(number(json, "air_threads") == 2);
+    CHECK(json["air_precision"].toString() == "double");
+
+    // Rates: positive and consistent with each other (their values are the machine's).
+    const double air = number(json, "air_updates_per_second");
+    const double airThreads = number(json, "air_updates_per_second_threads");
+    const double bare = number(json, "bare_stencil_updates_per_second");
+    const double bareFloat = number(json, "bare_stencil_float_updates_per_second");
+    for (const double rate : { air, airThreads, bare, bareFloat })
+    {
+        CHECK(rate > 0.0);
+        CHECK(std::isfinite(rate));
+    }
+    CHECK(number(json, "air_to_bare_ratio") == Approx(air / bare));
+    CHECK(number(json, "air_to_bare_ratio_threads") == Approx(airThreads / bare));
+
+    // The whole drum's compute per second of audio is the blocks' time over the audio's length.
+    const double wall = number(json, "wall_seconds");
+    CHECK(wall > 0.0);
+    CHECK(number(json, "compute_seconds_per_audio_second") == Approx(wall / 0.02));
+    CHECK(number(json, "realtime_factor") == Approx(0.02 / wall));
+
+    // The peak resident size holds at least the air's three time levels.
+    const double levels_mb = 3.0 * 8.0 * (double) box.numPoints() / (1024.0 * 1024.0);
+    CHECK(number(json, "peak_resident_mb") > levels_mb);
+    CHECK(number(json, "peak_resident_mb") < 1.0e6);
 }
 
 TEST_CASE("bench: the block size defaults to 64 and does not change the audio", "[renderer][bench]")
