@@ -89,39 +89,50 @@ struct LayerFixes
     int layerFaces;           // wall faces of the layer itself (0, or 1 at the top or bottom); -1: reflecting walls
 };
 
-// Rows [rowBegin, rowEnd) of 1..ny. side[0..2]: the v of the layers below, this, above (lossy);
-// or all nullptr and the links' terms a1 (u_j - u_i) from u (lossless).
-SNARESIM_WIDE_VECTOR_CLONES void fixRows(double* __restrict out, const double* __restrict up, const double* const* side,
-                                         const double* __restrict u, double a1, int nx, int ny, long sx, const LayerFixes& f,
-                                         int rowBegin, int rowEnd)
+// The whole layer, in passes over it while it is cached: the cut links' terms taken back (from
+// side[0..2], the v of the layers below, this, above (lossy); or, all nullptr, a1 (u_j - u_i)
+// from u (lossless)), then the absorbing walls, then the ghost columns. A node's arithmetic is
+// the same as in one pass row by row.
+SNARESIM_WIDE_VECTOR_CLONES void fixLayer(double* __restrict out, const double* __restrict up, const double* const* side,
+                                          const double* __restrict u, double a1, int nx, int ny, long sx, const LayerFixes& f)
 {
-    for (int iy = rowBegin; iy < rowEnd; ++iy)
+    const AirCut* const cutEnd = f.cuts + f.rowStart[ny];
+    if (side[1] != nullptr)
     {
-        const AirCut* c = f.cuts + f.rowStart[iy - 1];
-        const AirCut* end = f.cuts + f.rowStart[iy];
-        if (side[1] != nullptr)
-            for (; c != end; ++c)
-                out[c->local] -= side[c->layer][c->local + c->shift] - side[1][c->local];
-        else
-            for (; c != end; ++c)
-                out[c->local] -= a1 * (u[c->local + c->delta] - u[c->local]);
+        const double* const v1 = side[1];
+        for (const AirCut* c = f.cuts + f.rowStart[0]; c != cutEnd; ++c)
+            out[c->local] -= side[c->layer][c->local + c->shift] - v1[c->local];
+    }
+    else
+        for (const AirCut* c = f.cuts + f.rowStart[0]; c != cutEnd; ++c)
+            out[c->local] -= a1 * (u[c->local + c->delta] - u[c->local]);
 
-        double* __restrict o = out + iy * sx + 1;
-        if (f.layerFaces >= 0)
+    if (f.layerFaces >= 0)
+    {
+        // (1 + m lambda/2) Psi+ = [the update above] + (m lambda/2) Psi-
+        for (int iy = 1; iy <= ny; ++iy)
         {
-            // (1 + m lambda/2) Psi+ = [the update above] + (m lambda/2) Psi-
-            const double* __restrict p = up + iy * sx + 1;
             const int my = f.layerFaces + (iy == 1) + (iy == ny);
-            if (my > 0)
-            {
-                const double g = f.gain[my], inv = f.inverse[my];
-                for (int ix = 1; ix < nx - 1; ++ix)
-                    o[ix] = (o[ix] + g * p[ix]) * inv;
-            }
-            const double g = f.gain[my + 1], inv = f.inverse[my + 1];
-            o[0] = (o[0] + g * p[0]) * inv;
-            o[nx - 1] = (o[nx - 1] + g * p[nx - 1]) * inv;
+            if (my == 0)
+                continue;
+            double* __restrict o = out + iy * sx + 1;
+            const double* __restrict p = up + iy * sx + 1;
+            const double g = f.gain[my], inv = f.inverse[my];
+            for (int ix = 1; ix < nx - 1; ++ix)
+                o[ix] = (o[ix] + g * p[ix]) * inv;
         }
+        for (int iy = 1; iy <= ny; ++iy)
+        {
+            const int my = f.layerFaces + (iy == 1) + (iy == ny) + 1;
+            const long r = iy * sx + 1;
+            const double g = f.gain[my], inv = f.inverse[my];
+            out[r] = (out[r] + g * up[r]) * inv;
+            out[r + nx - 1] = (out[r + nx - 1] + g * up[r + nx - 1]) * inv;
+        }
+    }
+    for (int iy = 1; iy <= ny; ++iy)
+    {
+        double* o = out + iy * sx + 1;
         o[-1] = o[0];
         o[nx] = o[nx - 1];
     }
@@ -554,13 +565,13 @@ void AirBox::updateLayer(int iz, Ring& ring)
             side[0] = down ? vn : vo;
             side[2] = down ? vo : vn;
         }
-        fixRows(out, up, side, nullptr, 0.0, n[0], n[1], sx, fixes, 1, n[1] + 1);
+        fixLayer(out, up, side, nullptr, 0.0, n[0], n[1], sx, fixes);
     }
     else
     {
         const double* none[3] { nullptr, nullptr, nullptr };
         layerLossless(out, u, up, first, end, sx, sxy, a0, a1);
-        fixRows(out, up, none, u, a1, n[0], n[1], sx, fixes, 1, n[1] + 1);
+        fixLayer(out, up, none, u, a1, n[0], n[1], sx, fixes);
     }
 
     // the ghost rows, and the ghost layers beyond the top and bottom ones
