@@ -159,7 +159,7 @@ TEST_CASE("every parameter at its limits and random combinations play a fortissi
     {
         for (std::size_t i = next++; i < list.size(); i = next++)
             outcomes[i] = playRoll(list[i].params,
-                                   // the air box runs about 15 times slower than real time: 1 s of its roll
+                                   // the air box runs several times slower than real time, more with its energy tracked: 1 s of its roll
                                    list[i].params.get(ParamId::airModel) == (double) AirModel::airbox ? std::min(seconds, 1.0) : seconds);
     };
     const unsigned threads = std::max(1u, std::min(4u, std::thread::hardware_concurrency()));
