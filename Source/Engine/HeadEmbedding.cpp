@@ -288,7 +288,8 @@ void HeadEmbedding::solveFree(bool warm)
         f.cell = cells.data() + cellBegin[run.first];
         f.r = rNode.data() + nodeBegin[run.first];
         const size_t g0 = run.first, g1 = run.last;
-        switch (run.nodes * 8 + run.cells)
+        // the shapes with a loop of their own (a coarse head's node can hold 8 or more air nodes)
+        switch (run.nodes < 8 && run.cells < 8 ? run.nodes * 8 + run.cells : -1)
         {
             case 1 * 8 + 1: solveFreeRun<1, 1>(f, g0, g1, 1, 1); break;
             case 1 * 8 + 2: solveFreeRun<1, 2>(f, g0, g1, 1, 2); break;
