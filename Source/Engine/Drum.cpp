@@ -248,8 +248,10 @@ void Drum::setSnaresEngaged(bool on)
     ledger.change(snaresTerm, after - before);
 }
 
+// Out of line (also stepCouplingsInAir): step() without the profile then compiles as it did
+// before the profile existed (the same inlining, the same instructions).
 template <class Lap>
-void Drum::stepCouplings(Lap& lap)
+[[gnu::noinline]] void Drum::stepCouplings(Lap& lap)
 {
     // 1. The components' free updates, with the cavity's pressure at time n on the heads
     //    (explicit, CavityCoupling.h).
@@ -301,7 +303,7 @@ void Drum::noteSolves(const ContactSolveResult& mallet, const SnareSolveResult* 
 }
 
 template <class Lap>
-void Drum::stepCouplingsInAir(Lap& lap)
+[[gnu::noinline]] void Drum::stepCouplingsInAir(Lap& lap)
 {
     // 1. The free updates: the air (eq. 25) and the components, the heads without pressure
     //    (the embeddings carry it, eq. 7).
