@@ -3,6 +3,7 @@
 #include "EnergyTerm.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <numbers>
 
@@ -21,6 +22,31 @@ double reserveFor(const DrumConfig& c, const MembraneSpec& m)
 {
     return Cavity::kineticReserve(c.cavity, m.radius_m, m.density_kg_per_m2, 1.0 / c.sampleRate_Hz);
 }
+
+// step()'s clock: lap(phase) adds the time since the last lap (or the step's start) to the
+// phase. The one that is off compiles to nothing.
+template <bool On>
+struct PhaseClock
+{
+    explicit PhaseClock(StepProfile&) {}
+    void operator()(StepPhase) {}
+};
+
+template <>
+struct PhaseClock<true>
+{
+    using Clock = std::chrono::steady_clock;
+    StepProfile& profile;
+    Clock::time_point last;
+
+    explicit PhaseClock(StepProfile& p) : profile(p), last(Clock::now()) { ++profile.steps; }
+    void operator()(StepPhase phase)
+    {
+        const auto now = Clock::now();
+        profile.seconds[(size_t) phase] += std::chrono::duration<double>(now - last).count();
+        last = now;
+    }
+};
 
 std::vector<Mallet> makeMallets(const DrumConfig& c, const Membrane& batter, double k)
 {
@@ -56,6 +82,7 @@ Drum::Drum(const DrumConfig& config)
     {
         box.build(cfg, batterHead, carryHead);
         wiresSaved = wires.uNext;
+        stepProfile.path = StepPath::airBox;
     }
     const auto terms = energyTerms();
     registerTerms(ledger, terms);
@@ -221,19 +248,29 @@ void Drum::setSnaresEngaged(bool on)
     ledger.change(snaresTerm, after - before);
 }
 
-void Drum::stepCouplings()
+// Out of line (also stepCouplingsInAir): step() without the profile then compiles as it did
+// before the profile existed (the same inlining, the same instructions).
+template <class Lap>
+[[gnu::noinline]] void Drum::stepCouplings(Lap& lap)
 {
     // 1. The components' free updates, with the cavity's pressure at time n on the heads
     //    (explicit, CavityCoupling.h).
     batterHead.computeFree(airCoupling.pressureOnBatter()); // eq. (22) without the contact force
+    lap(StepPhase::batterFree);
     carryHead.computeFree(airCoupling.pressureOnCarry());   // eq. (23) without snare and end forces
+    lap(StepPhase::carryFree);
     if (engaged)
+    {
         wires.computeFree();                                // eq. (28) without collision and end forces
+        lap(StepPhase::wiresFree);
+    }
     for (auto& ml : mallets)
         ml.computeFree();                                   // eq. (43) without the contact force
+    lap(StepPhase::malletsFree);
 
     // 2. The couplings: each solves for its forces and adds them to the free updates.
     const auto mallet = malletCoupling.step(); // eq. (44)-(45)
+    lap(StepPhase::malletContact);
     if (engaged)
     {
         const auto snare = snareCoupling.step(); // eq. (48)-(50)
@@ -241,6 +278,7 @@ void Drum::stepCouplings()
     }
     else
         noteSolves(mallet, nullptr);
+    lap(StepPhase::snareContact);
 }
 
 void Drum::noteSolves(const ContactSolveResult& mallet, const SnareSolveResult* snare)
@@ -264,17 +302,25 @@ void Drum::noteSolves(const ContactSolveResult& mallet, const SnareSolveResult* 
         ++stats.fallbacks;
 }
 
-void Drum::stepCouplingsInAir()
+template <class Lap>
+[[gnu::noinline]] void Drum::stepCouplingsInAir(Lap& lap)
 {
     // 1. The free updates: the air (eq. 25) and the components, the heads without pressure
     //    (the embeddings carry it, eq. 7).
     box.computeFree();
+    lap(StepPhase::airBegin);
     batterHead.computeFree();
+    lap(StepPhase::batterFree);
     carryHead.computeFree();
+    lap(StepPhase::carryFree);
     if (engaged)
+    {
         wires.computeFree();
+        lap(StepPhase::wiresFree);
+    }
     for (auto& ml : mallets)
         ml.computeFree();
+    lap(StepPhase::malletsFree);
 
     // 2. Each head with its air (eq. 7-8) and its contacts, solved jointly (DrumAir.h).
     for (size_t i = 0; i < mallets.size(); ++i)
@@ -285,6 +331,7 @@ void Drum::stepCouplingsInAir()
                                               for (size_t i = 0; i < mallets.size(); ++i)
                                                   mallets[i].zNext = malletsSaved[i];
                                           });
+    lap(StepPhase::batterJoint);
     JointSolveResult onCarry;
     if (engaged)
     {
@@ -307,24 +354,44 @@ void Drum::stepCouplingsInAir()
     stats.airCapped += (onBatter.capped ? 1 : 0) + (onCarry.capped ? 1 : 0);
     stats.airTrials += onBatter.trials + onCarry.trials;
     stats.maxAirMismatch = std::max({ stats.maxAirMismatch, onBatter.mismatch, onCarry.mismatch });
+    lap(StepPhase::carryJoint);
     box.joinAir(); // the rest of the air's update (step 1) ran meanwhile on the air's threads
+    lap(StepPhase::airJoin);
     box.listen();
+    lap(StepPhase::signals);
 }
 
 double Drum::step()
 {
+    if (profiling)
+    {
+        PhaseClock<true> lap(stepProfile);
+        return stepWith(lap);
+    }
+    PhaseClock<false> lap(stepProfile);
+    return stepWith(lap);
+}
+
+template <class Lap>
+double Drum::stepWith(Lap& lap)
+{
     if (box.active())
-        stepCouplingsInAir();
+        stepCouplingsInAir(lap);
     else
-        stepCouplings();
+        stepCouplings(lap);
     retrieveRisingMallets();
+    lap(StepPhase::malletsFree);
 
     const double dVNow = air.volumeChangeNow();
     airCoupling.step(); // dV^{n+1}
+    lap(box.active() ? StepPhase::signals : StepPhase::cavity); // the air box path counts it with the signals
 
     // 3. Energy at n + 1/2 and the microphones, then every time level moves on.
     if (trackEnergy)
+    {
         updateEnergy();
+        lap(StepPhase::energy);
+    }
 
     signals.top_m_per_s = velocityAt(batterHead, topMic);
     signals.bottom_m_per_s = velocityAt(carryHead, bottomMic);
@@ -335,6 +402,7 @@ double Drum::step()
     signals.mix = cfg.outputGain
                 * (m.mixTop * m.topGain * signals.top_m_per_s + m.mixBottom * m.bottomGain * signals.bottom_m_per_s
                    + m.mixFar * m.farGain * signals.far_Pa);
+    lap(StepPhase::signals);
 
     dVPrev = dVNow;
     ++samplesRendered;
@@ -350,6 +418,7 @@ double Drum::step()
         box.advance();
     for (auto& ml : mallets)
         ml.advance();
+    lap(StepPhase::advance);
     return signals.mix;
 }
 

@@ -18,6 +18,7 @@
 #include "Membrane.h"
 #include "SnareContact.h"
 #include "SnareWires.h"
+#include "StepProfile.h"
 
 #include <array>
 #include <vector>
@@ -105,6 +106,13 @@ public:
     const SolverStats& solverStats() const { return stats; }
     void resetStats() { stats = {}; }
 
+    // Where the steps' time goes (StepProfile.h), off by default. While on, step() reads the
+    // clock between its phases; on or off it plays the same numbers and allocates nothing.
+    void setProfiling(bool on) { profiling = on; }
+    bool isProfiling() const { return profiling; }
+    const StepProfile& profile() const { return stepProfile; }
+    void resetProfile() { stepProfile.clear(); }
+
     // Silence the drum and park the mallets.
     void reset();
 
@@ -129,8 +137,12 @@ public:
 private:
     auto energyTerms() const; // the ledger's terms and their owners (Drum.cpp)
     void updateEnergy();
-    void stepCouplings();      // steps 1-2 of step() (free updates, couplings)
-    void stepCouplingsInAir(); // the same with the air box
+    template <class Lap>
+    double stepWith(Lap& lap);     // step(), lap(phase) after each phase (Drum.cpp)
+    template <class Lap>
+    void stepCouplings(Lap& lap);      // steps 1-2 of step() (free updates, couplings)
+    template <class Lap>
+    void stepCouplingsInAir(Lap& lap); // the same with the air box
     void noteSolves(const ContactSolveResult& mallet, const SnareSolveResult* snare);
     void retrieveRisingMallets();
     double velocityAt(const Membrane& head, const GridDistribution& point) const;
@@ -157,6 +169,8 @@ private:
     SolverStats stats;
     MicSignals signals;
     bool trackEnergy = false;
+    bool profiling = false;
+    StepProfile stepProfile;
     bool engaged = true;
     int nextMallet = 0;
     double dVPrev = 0.0; // dV^{n-1}, for the far-field second difference

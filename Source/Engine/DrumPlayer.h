@@ -152,6 +152,7 @@ public:
     // The drum playing now (nullptr before start() or when the rate cannot be simulated).
     // Only while process() is not running.
     const Drum* drum() const noexcept { return current != nullptr ? current->drum.get() : nullptr; }
+    Drum* drum() noexcept { return current != nullptr ? current->drum.get() : nullptr; }
     double sampleRate() const noexcept { return rate; }
 
 private:

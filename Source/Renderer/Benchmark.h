@@ -42,6 +42,9 @@ RenderJob benchmarkJob(const RenderJob& job);
 // audio (may be empty) receives every block of the first run's mix. The result's `bench`
 // holds the block timings (each block's fastest run, and the raw extremes), the grid
 // figures and the process's peak resident size; the other figures are of the first run.
+// After the timed runs the plan is played once more the same way with the drum's step
+// profile on (Drum::setProfiling): bench->profile, and that run's time beside the fastest
+// timed run's (what the profiling itself costs).
 // With the air box (config's model AirModel::airbox) the player plays a drum built from config
 // (so the air options, --threads among them, apply), and after the runs the air box's update is
 // timed against a bare 7-point stencil on the same grid (bench->air).

@@ -661,7 +661,11 @@ Benchmark:
                         air_updates_per_second (one thread),
                         air_updates_per_second_threads, bare_stencil_updates_per_second,
                         bare_stencil_float_updates_per_second, air_to_bare_ratio (one
-                        thread) and air_to_bare_ratio_threads. Non-finite output: exit 1.
+                        thread) and air_to_bare_ratio_threads. Then one more run with
+                        the drum's step profile on: profile (the compute per second of
+                        audio and the share of each phase of the step, their sum, and the
+                        profiling's overhead against the fastest timed run). Non-finite
+                        output: exit 1.
   --block-size N        samples per block, 1..8192 (default 64)
   --bench-scenario S    the strikes when no --hit / --midi is given: default = velocity
                         127 every 0.5 s for --seconds (default 2); roll = 16 strikes at

@@ -34,6 +34,7 @@ struct BenchFigures
     int repeats = 1;                   // runs; the block times above are each block's fastest run
     double worstBlockRaw_s = 0.0;      // the slowest block of any run
     double slowestRun_s = 0.0;         // the slowest run's total block time
+    double fastestRun_s = 0.0;         // the fastest run's total block time
     double blockBudget_s = 0.0;        // blockSize / sample rate
     double batterGridSpacing_m = 0.0;  // Drum::batter().grid().spacing()
     double carryGridSpacing_m = 0.0;
@@ -44,6 +45,9 @@ struct BenchFigures
     // The air box (--model airbox): its update against a bare 7-point stencil on its grid,
     // timed after the runs in the same process (AirSpeed.h).
     std::optional<AirSpeed> air;
+    // One more run after the timed ones, with the drum's step profile on (StepProfile.h).
+    StepProfile profile;
+    double profiledRun_s = 0.0;        // that run's total block time
 };
 
 struct RenderStats

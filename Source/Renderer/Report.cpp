@@ -5,9 +5,11 @@
 
 #include <juce_core/juce_core.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <vector>
 
 namespace snaresim::render
 {
@@ -45,6 +47,53 @@ std::string formatted(const char* format, auto... values)
     char buffer[256];
     std::snprintf(buffer, sizeof buffer, format, values...);
     return buffer;
+}
+
+// The step profile's phases, the path's in step order: each one's compute per second of audio
+// and share of the steps' total.
+struct PhaseFigure
+{
+    std::string_view name;
+    double perAudioSecond = 0.0;
+    double share = 0.0;
+};
+
+std::vector<PhaseFigure> phaseFigures(const RenderReport& r, const StepProfile& p)
+{
+    std::vector<PhaseFigure> figures;
+    const double total = p.total();
+    for (const auto phase : StepProfile::phasesOf(p.path))
+        figures.push_back({ StepProfile::name(phase), p[phase] / secondsRendered(r), total > 0.0 ? p[phase] / total : 0.0 });
+    return figures;
+}
+
+// The profiled run's block time against the fastest timed run's, less one.
+double profilingOverhead(const BenchFigures& b)
+{
+    return b.fastestRun_s > 0.0 ? b.profiledRun_s / b.fastestRun_s - 1.0 : 0.0;
+}
+
+juce::var profileJson(const RenderReport& r, const BenchFigures& b)
+{
+    auto* object = new juce::DynamicObject();
+    const juce::var result(object);
+    const auto& p = b.profile;
+    object->setProperty("path", text(std::string(StepProfile::name(p.path))));
+    object->setProperty("steps", (juce::int64) p.steps);
+    auto* phases = new juce::DynamicObject();
+    for (const auto& f : phaseFigures(r, p))
+    {
+        auto* phase = new juce::DynamicObject();
+        phase->setProperty("compute_seconds_per_audio_second", f.perAudioSecond);
+        phase->setProperty("share", f.share);
+        phases->setProperty(juce::Identifier(juce::String(std::string(f.name))), juce::var(phase));
+    }
+    object->setProperty("phases", juce::var(phases));
+    object->setProperty("compute_seconds_per_audio_second", p.total() / secondsRendered(r)); // the phases' sum
+    object->setProperty("run_compute_seconds_per_audio_second", b.profiledRun_s / secondsRendered(r)); // its blocks, player included
+    object->setProperty("fastest_run_compute_seconds_per_audio_second", b.fastestRun_s / secondsRendered(r));
+    object->setProperty("overhead", profilingOverhead(b));
+    return result;
 }
 
 } // namespace
@@ -124,6 +173,7 @@ std::string formatJson(const RenderReport& r)
             object->setProperty("air_to_bare_ratio", a->airRate() / a->bareRate());
             object->setProperty("air_to_bare_ratio_threads", a->airThreadsRate() / a->bareRate());
         }
+        object->setProperty("profile", profileJson(r, *b));
     }
 
     return juce::JSON::toString(root, true).toStdString() + "\n";
@@ -165,6 +215,14 @@ std::string benchSummary(const RenderReport& r, const BenchFigures& b)
                        a->airThreadsRate() / a->bareRate(), a->threads);
     }
     s += formatted("peak resident size %.1f MB\n", b.peakResident_bytes / (1024.0 * 1024.0));
+    s += formatted("profile (one more run, %s path): the steps %.3g s of compute per s of audio, the blocks %.3g "
+                   "(fastest timed run %.3g: profiling costs %+.1f%%)\n",
+                   std::string(StepProfile::name(b.profile.path)).c_str(), b.profile.total() / secondsRendered(r),
+                   b.profiledRun_s / secondsRendered(r), b.fastestRun_s / secondsRendered(r), 100.0 * profilingOverhead(b));
+    auto phases = phaseFigures(r, b.profile);
+    std::stable_sort(phases.begin(), phases.end(), [](const auto& x, const auto& y) { return x.share > y.share; });
+    for (const auto& f : phases)
+        s += formatted("  %-15s %9.4f s/s %6.1f%%\n", std::string(f.name).c_str(), f.perAudioSecond, 100.0 * f.share);
     s += formatted("peak %.6g, rms %.6g, non-finite samples %lld\n", r.stats.peak, r.stats.rms,
                    (long long) r.stats.nonfiniteSamples);
     if (r.output)

@@ -32,7 +32,12 @@ struct RenderReport
 // air_spacing_m, air_threads, air_precision, air_updates_per_second (one thread),
 // air_updates_per_second_threads, bare_stencil_updates_per_second (double, one thread, the
 // same grid), bare_stencil_float_updates_per_second, air_to_bare_ratio and
-// air_to_bare_ratio_threads.
+// air_to_bare_ratio_threads; and "profile": the step profile of one more run (Benchmark.h):
+// path, steps, phases (each phase of the path, StepProfile.h, with its
+// compute_seconds_per_audio_second and share of the phases' sum),
+// compute_seconds_per_audio_second (the phases' sum), run_compute_seconds_per_audio_second
+// (that run's blocks), fastest_run_compute_seconds_per_audio_second (the fastest timed run's)
+// and overhead (the profiled run's time over the fastest timed run's, less one).
 std::string formatJson(const RenderReport& report);
 
 // A few lines, ends with a newline.

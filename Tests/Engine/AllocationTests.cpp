@@ -91,3 +91,33 @@ TEST_CASE("the drum in the air box steps, and takes new head damping, without al
     CHECK(std::isfinite(sum));
     CHECK(drum.energy().size() == 6);
 }
+
+TEST_CASE("the drum steps with its step profile on without allocating, on the cavity path and in the air box", "[realtime][profile]")
+{
+    DrumConfig cfg = test::wholeDrum();
+    if (GENERATE(false, true))
+    {
+        cfg.cavity.model = AirModel::airbox;
+        cfg.air.size_m = { 0.48, 0.48, 0.4 };
+    }
+    Drum drum(cfg);
+    drum.setEnergyTracking(true);
+    drum.step(); // the steady state, as above
+    drum.setProfiling(true);
+    double sum = 0.0;
+    const long before = snaresim::test::countedAllocations.load();
+    {
+        CountAllocations counting;
+        for (int n = 0; n < 300; ++n)
+        {
+            if (n % 150 == 0)
+                drum.playNote(38, 127);
+            sum += drum.step();
+        }
+        drum.resetProfile();
+        drum.setProfiling(false);
+        sum += drum.step();
+    }
+    CHECK(snaresim::test::countedAllocations.load() == before);
+    CHECK(std::isfinite(sum));
+}

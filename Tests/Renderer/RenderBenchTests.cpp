@@ -7,6 +7,7 @@
 #include "AirBox.h"
 #include "Cavity.h"
 #include "Membrane.h"
+#include "StepProfile.h"
 
 #include <catch2/catch.hpp>
 
@@ -260,6 +261,63 @@ TEST_CASE("bench: --bench-short renders 0.25 s of the default scenario", "[rende
     CHECK(run.out.find("worst") != std::string::npos);
     CHECK(run.out.find("budget") != std::string::npos);
     CHECK(entries(dir.out()).empty());
+}
+
+TEST_CASE("bench: the step profile of one more run, phase by phase, with shares that add up to 1", "[renderer][bench][profile]")
+{
+    TempDir dir;
+    const bool airBox = GENERATE(false, true);
+    const auto json = airBox ? benchJson(dir, { "--model", "airbox", "--sample-rate", "22050", "--seconds", "0.02",
+                                                "--bench-repeat", "1", "--set", "grid_coarseness=3" })
+                             : benchJson(dir, { "--bench-short" });
+    const auto& profile = json["profile"];
+    REQUIRE(profile.isObject());
+    const auto path = airBox ? snaresim::StepPath::airBox : snaresim::StepPath::cavity;
+    CHECK(profile["path"].toString() == juce::String(std::string(snaresim::StepProfile::name(path))));
+    CHECK(number(profile, "steps") == number(json, "samples"));
+
+    const auto& phases = profile["phases"];
+    REQUIRE(phases.isObject());
+    const auto expected = snaresim::StepProfile::phasesOf(path);
+    CHECK(phases.getDynamicObject()->getProperties().size() == (int) expected.size());
+    double shares = 0.0, perSecond = 0.0;
+    for (const auto phase : expected)
+    {
+        const std::string name(snaresim::StepProfile::name(phase));
+        INFO("phase " << name);
+        const auto& entry = phases[juce::Identifier(juce::String(name))];
+        REQUIRE(entry.isObject());
+        const double share = number(entry, "share"), seconds = number(entry, "compute_seconds_per_audio_second");
+        CHECK(share >= 0.0);
+        CHECK(share <= 1.0);
+        CHECK(seconds >= 0.0);
+        shares += share;
+        perSecond += seconds;
+    }
+    CHECK(std::abs(shares - 1.0) <= 1e-6);
+    CHECK(number(phases["energy"], "share") == 0.0); // no energy tracking in the benchmark
+
+    // The phases' sum, inside the profiled run's blocks; the overhead against the fastest timed run.
+    const double steps = number(profile, "compute_seconds_per_audio_second");
+    const double run = number(profile, "run_compute_seconds_per_audio_second");
+    const double fastest = number(profile, "fastest_run_compute_seconds_per_audio_second");
+    CHECK(steps > 0.0);
+    CHECK(steps == Approx(perSecond).epsilon(1e-9));
+    CHECK(run >= steps);
+    CHECK(fastest > 0.0);
+    CHECK(number(profile, "overhead") == Approx(run / fastest - 1.0).margin(1e-9));
+    // The timed figures are the unprofiled runs': no run is faster than the sum of each block's fastest.
+    CHECK(fastest >= number(json, "compute_seconds_per_audio_second") * (1.0 - 1e-9));
+
+    // The summary lists the phases too.
+    if (! airBox)
+    {
+        const auto summary = runRenderer({ "--bench", "--bench-short" }, dir.root() / "capture");
+        REQUIRE(summary.exitCode == 0);
+        CHECK(summary.out.find("profile (one more run, cavity path)") != std::string::npos);
+        CHECK(summary.out.find("snare_contact") != std::string::npos);
+        CHECK(summary.out.find("batter_free") != std::string::npos);
+    }
 }
 
 TEST_CASE("bench: bad block sizes and refused options exit with 2", "[renderer][bench][errors]")
