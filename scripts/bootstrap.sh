@@ -133,7 +133,7 @@ case "$mode" in
     sanitize)
         log "building everything with the sanitizers"
         cmake --build "$build_dir" -j "$jobs"
-        # The corner test's rolls are 0.5 s here (4 s in the release suite); it prints the length.
+        # The corner test's rolls are 0.5 s here (2 s in the release suite); it prints the length.
         log "running the tests under AddressSanitizer and UndefinedBehaviorSanitizer"
         # Two at a time: the instrumented physics is slow, and every test works in its own folder.
         SNARESIM_CORNER_SECONDS="${SNARESIM_CORNER_SECONDS:-0.5}" ctest --test-dir "$build_dir" --output-on-failure -j "$jobs"

@@ -1,7 +1,7 @@
 // The drum at the corners of its parameter space: every parameter at its minimum and at its
-// maximum (the others at their defaults), and 200 random combinations, each playing a 4 s
+// maximum (the others at their defaults), and 200 random combinations, each playing a 2 s
 // fortissimo roll (velocity 127 every 60 ms) at 48 kHz; and 24 random combinations in the air
-// box, whose rolls last a fortieth of that, 0.1 s (it is several times slower than real time,
+// box, whose rolls last a fortieth of that, 50 ms (it is several times slower than real time,
 // more with its energy tracked). Each run must give finite, bounded output, an energy that never rises but by what
 // the mallets bring (losses on), and a drum that never goes non-finite (what the plug-in's
 // non-finite guard would catch and reset).
@@ -37,7 +37,7 @@ constexpr double kOutputBound = 64.0;
 // Largest rise of (total - injected) energy in one step, relative to the largest total seen:
 // round-off is about 1e-15 per step.
 constexpr double kRiseTolerance = 1.0e-12;
-// The air box's rolls: a fortieth of the others' (0.1 s in the release suite)
+// The air box's rolls: a fortieth of the others' (50 ms in the release suite)
 constexpr double kAirBoxShare = 1.0 / 40.0;
 constexpr int kRandomCombinations = 200, kAirBoxCombinations = 24;
 
@@ -66,7 +66,7 @@ double rollSeconds()
         if (s > 0.0)
             return s;
     }
-    return 4.0;
+    return 2.0;
 }
 
 Outcome playRoll(const ParameterSet& params, double seconds)
