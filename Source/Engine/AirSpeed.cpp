@@ -14,43 +14,37 @@ namespace snaresim
 namespace
 {
 // The bare loop: out = a0 u + a1 (6 neighbours) - up over every node of a padded nx x ny x nz grid.
-SNARESIM_WIDE_VECTOR_CLONES void bareDouble(double* __restrict out, const double* __restrict u, const double* __restrict up,
-                                            int nx, int ny, int nz, double a0, double a1)
+// Inlined into one function per precision, each built for the vector targets.
+template <class T>
+[[gnu::always_inline]] inline void bareLoop(T* __restrict out, const T* __restrict u, const T* __restrict up, int nx, int ny,
+                                            int nz, T a0, T a1)
 {
     const long sx = nx + 2, sxy = sx * (ny + 2);
     for (int iz = 1; iz <= nz; ++iz)
         for (int iy = 1; iy <= ny; ++iy)
         {
             const long r = iz * sxy + iy * sx + 1;
-            const double* v = u + r;
-            const double* vp = up + r;
-            double* o = out + r;
+            const T* v = u + r;
+            const T* vp = up + r;
+            T* o = out + r;
             for (int m = 0; m < nx; ++m)
             {
-                const double nb = (v[m - 1] + v[m + 1]) + (v[m - sx] + v[m + sx]) + (v[m - sxy] + v[m + sxy]);
+                const T nb = (v[m - 1] + v[m + 1]) + (v[m - sx] + v[m + sx]) + (v[m - sxy] + v[m + sxy]);
                 o[m] = a0 * v[m] + a1 * nb - vp[m];
             }
         }
 }
 
-// The same in single precision.
+SNARESIM_WIDE_VECTOR_CLONES void bareDouble(double* __restrict out, const double* __restrict u, const double* __restrict up,
+                                            int nx, int ny, int nz, double a0, double a1)
+{
+    bareLoop(out, u, up, nx, ny, nz, a0, a1);
+}
+
 SNARESIM_WIDE_VECTOR_CLONES void bareFloat(float* __restrict out, const float* __restrict u, const float* __restrict up, int nx,
                                            int ny, int nz, float a0, float a1)
 {
-    const long sx = nx + 2, sxy = sx * (ny + 2);
-    for (int iz = 1; iz <= nz; ++iz)
-        for (int iy = 1; iy <= ny; ++iy)
-        {
-            const long r = iz * sxy + iy * sx + 1;
-            const float* v = u + r;
-            const float* vp = up + r;
-            float* o = out + r;
-            for (int m = 0; m < nx; ++m)
-            {
-                const float nb = (v[m - 1] + v[m + 1]) + (v[m - sx] + v[m + sx]) + (v[m - sxy] + v[m + sxy]);
-                o[m] = a0 * v[m] + a1 * nb - vp[m];
-            }
-        }
+    bareLoop(out, u, up, nx, ny, nz, a0, a1);
 }
 
 // Three levels of the bare stencil, rotated each step as the air box's are.
