@@ -68,7 +68,7 @@ namespace
 {
 // One row of eq. (22): out = c0 w + c1 (4 neighbours of w) + d0 wp + d1 (4 neighbours of wp) + push,
 // for `count` nodes that all lie inside the disc; returns the sum of out.
-SNARESIM_VECTOR_CLONES double updateRow(double* __restrict out, const double* __restrict w, const double* __restrict wp,
+SNARESIM_WIDE_VECTOR_CLONES double updateRow(double* __restrict out, const double* __restrict w, const double* __restrict wp,
                                         int n, int count, double c0, double c1, double d0, double d1, double push)
 {
     for (int m = 0; m < count; ++m)
@@ -90,8 +90,8 @@ SNARESIM_VECTOR_CLONES double updateRow(double* __restrict out, const double* __
 } // namespace
 
 // Row by row over the disc's runs of interior nodes (nodes outside stay zero, the fixed rim),
-// summing w^{n+1} for the cavity on the way. updateRow is built for AVX2+FMA and for baseline
-// x86-64; the loader picks the one the CPU runs.
+// summing w^{n+1} for the cavity on the way. updateRow is built for AVX-512, AVX2+FMA and
+// baseline x86-64; the loader picks the one the CPU runs.
 void Membrane::computeFree(double pressure)
 {
     const int n = g.width();
