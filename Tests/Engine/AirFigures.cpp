@@ -14,6 +14,7 @@
 
 #include "AirBandRun.h"
 #include "ModePairs.h"
+#include "Pluck01.h"
 #include "Section52.h"
 
 #include <cmath>
@@ -107,19 +108,8 @@ std::vector<double> batterAlone(const AirBoxSpec* box, int steps)
     std::unique_ptr<AirBox> air = box ? std::make_unique<AirBox>(*box, k) : nullptr;
     Membrane head(spec, k);
     std::unique_ptr<HeadEmbedding> embed = air ? std::make_unique<HeadEmbedding>(*air, head, 0.0) : nullptr;
-    const CircularGrid& g = head.grid();
-    for (int level = 0; level < 2; ++level)
-    {
-        for (int iy = 0; iy < g.width(); ++iy)
-            for (int ix = 0; ix < g.width(); ++ix)
-            {
-                const int i = g.index(ix, iy);
-                if (g.mask()[(size_t) i] != 0.0)
-                    head.setNextAt(i, 1e-4 * std::cyl_bessel_j(0.0, 2.404825557695773 * std::hypot(g.x(ix), g.x(iy)) / g.radius()));
-            }
-        head.advance();
-    }
-    const int centre = g.nearestInterior(0.0, 0.0);
+    test::pluck01(head);
+    const int centre = head.grid().nearestInterior(0.0, 0.0);
     std::vector<double> w;
     for (int n = 0; n < steps; ++n)
     {

@@ -5,6 +5,7 @@
 #include "AirBox.h"
 #include "HeadEmbedding.h"
 #include "Membrane.h"
+#include "Pluck01.h"
 #include "SpectrumPeaks.h"
 
 #include <catch2/catch.hpp>
@@ -31,22 +32,7 @@ MembraneSpec losslessBatter(double coarseness = 1.0)
     return s;
 }
 
-// The head at rest in the (0,1) shape J0(2.4048 r / R), 0.1 mm at the centre.
-void pluck01(Membrane& head)
-{
-    const CircularGrid& g = head.grid();
-    for (int round = 0; round < 2; ++round) // w^n = w^{n-1}: at rest
-    {
-        for (int iy = 0; iy < g.width(); ++iy)
-            for (int ix = 0; ix < g.width(); ++ix)
-            {
-                const int i = g.index(ix, iy);
-                if (g.mask()[(size_t) i] != 0.0)
-                    head.setNextAt(i, 1e-4 * std::cyl_bessel_j(0.0, 2.404825557695773 * std::hypot(g.x(ix), g.x(iy)) / g.radius()));
-            }
-        head.advance();
-    }
-}
+using test::pluck01;
 
 // Frequency of the strongest peak of x in [lo, hi] Hz.
 double peakFrequency(const std::vector<double>& x, double lo, double hi)
