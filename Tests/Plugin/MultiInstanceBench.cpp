@@ -14,6 +14,7 @@
 
 #include "PluginHostHarness.h"
 
+#include "Benchmark.h" // the renderer's roll
 #include "Parameters.h"
 
 #include <algorithm>
@@ -110,7 +111,8 @@ void setQuality(juce::AudioPluginInstance& plugin, double q)
 int main(int argc, char** argv)
 {
     const Options opt = parse(argc, argv);
-    const double seconds = opt.shortRun ? 0.4 : 1.5; // the roll (its first strikes when short)
+    using namespace snaresim::render;
+    const double seconds = opt.shortRun ? 0.4 : kRollSeconds; // the roll (its first strikes when short)
     const int repeats = opt.shortRun ? 1 : opt.repeats;
 
     // One core: the first this process may use.
@@ -150,8 +152,8 @@ int main(int argc, char** argv)
     const int numSamples = (int) std::lround(seconds * opt.sampleRate);
     const int numBlocks = (numSamples + opt.block - 1) / opt.block;
     std::vector<int> strikeAt;
-    for (int s = 0; s < 16; ++s)
-        if (const int at = (int) std::lround((0.1 + 0.06 * s) * opt.sampleRate); at < numSamples)
+    for (int s = 0; s < kRollStrikes; ++s)
+        if (const int at = (int) std::lround((kRollStart_s + kRollInterval_s * s) * opt.sampleRate); at < numSamples)
             strikeAt.push_back(at);
 
     int channels = 1;
@@ -195,7 +197,7 @@ int main(int argc, char** argv)
                 midi.clear();
                 for (const int at : strikeAt)
                     if (at >= start && at < start + count)
-                        midi.addEvent(juce::MidiMessage::noteOn(10, 38, (juce::uint8) 127), at - start);
+                        midi.addEvent(juce::MidiMessage::noteOn(10, kBenchNote, (juce::uint8) kBenchVelocity), at - start);
                 p->processBlock(buffer, midi);
                 for (int ch = 0; ch < buffer.getNumChannels(); ++ch)
                     for (int i = 0; i < count; ++i)
