@@ -65,6 +65,23 @@ public:
         sumNext += value - wNext[(size_t) node];
         wNext[(size_t) node] = value;
     }
+    // The same at count distinct nodes.
+    void setNextAt(const int* nodes, const double* values, int count)
+    {
+        double* w = wNext.data();
+        double c0 = 0.0, c1 = 0.0;
+        int j = 0;
+        for (; j + 2 <= count; j += 2)
+        {
+            c0 += values[j] - w[nodes[j]];
+            c1 += values[j + 1] - w[nodes[j + 1]];
+        }
+        for (; j < count; ++j)
+            c0 += values[j] - w[nodes[j]];
+        for (j = 0; j < count; ++j)
+            w[nodes[j]] = values[j];
+        sumNext += c0 + c1;
+    }
     // w^{n+1} copied out and back (w sized by the first call), for a step's coupling solved
     // more than once (DrumAir).
     void saveNext(std::vector<double>& w, double& sum) const

@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <cstring>
 #include <limits>
 #include <map>
@@ -41,45 +40,59 @@ SnareContact::SnareContact(const SnareSpec& spec, SnareWires& wires, Membrane& c
                 pointHeadNode.push_back(node);
             }
         }
-    // Number the points group by group, so that a group's points are contiguous (the ids above
-    // ran over the wires' interior nodes in order: pointOfWireNode maps them).
+    // Sort the groups into classes of equal size (by node within a class) and number each
+    // class's points member-major (the layout in the header); pointOfWireNode maps the ids
+    // above, which ran over the wires' interior nodes in order.
+    std::map<int, std::vector<int>> nodesBySize;
     size_t largest = 1;
-    std::vector<int> wireNodeByGroup, headNodeByGroup;
-    pointOfWireNode.assign(pointWireNode.size(), 0);
     for (const auto& [node, members] : byNode)
     {
-        const int g = (int) groupNode.size();
-        groupNode.push_back(node);
-        groupPointBegin.push_back((int) wireNodeByGroup.size());
-        groupEndBegin.push_back((int) groupEnds.size());
-        for (const int old : members.first)
-        {
-            pointOfWireNode[(size_t) old] = (int) wireNodeByGroup.size();
-            wireNodeByGroup.push_back(pointWireNode[(size_t) old]);
-            headNodeByGroup.push_back(pointHeadNode[(size_t) old]);
-        }
-        groupEnds.insert(groupEnds.end(), members.second.begin(), members.second.end());
-        (members.second.empty() ? openGroups : endGroups).push_back(g);
+        nodesBySize[(int) members.first.size()].push_back(node);
         largest = std::max(largest, members.first.size());
     }
-    groupPointBegin.push_back((int) wireNodeByGroup.size());
+    const size_t numPoints = pointWireNode.size();
+    std::vector<int> wireNodeOrdered(numPoints), headNodeOrdered(numPoints);
+    pointOfWireNode.assign(numPoints, 0);
+    groupMembers.assign(numPoints, 0);
+    int pointBegin = 0;
+    for (const auto& [size, nodes] : nodesBySize)
+    {
+        const int groupBegin = (int) groupNode.size(), count = (int) nodes.size();
+        classes.push_back({ size, groupBegin, count, pointBegin });
+        for (int i = 0; i < count; ++i)
+        {
+            const auto& members = byNode[nodes[(size_t) i]];
+            const int g = groupBegin + i;
+            groupNode.push_back(nodes[(size_t) i]);
+            groupEndBegin.push_back((int) groupEnds.size());
+            groupEnds.insert(groupEnds.end(), members.second.begin(), members.second.end());
+            if (! members.second.empty())
+                endGroups.push_back(g);
+            groupMemberBegin.push_back(pointBegin + i * size);
+            for (int j = 0; j < size; ++j)
+            {
+                const int old = members.first[(size_t) j], t = pointBegin + j * count + i;
+                pointOfWireNode[(size_t) old] = t;
+                wireNodeOrdered[(size_t) t] = pointWireNode[(size_t) old];
+                headNodeOrdered[(size_t) t] = pointHeadNode[(size_t) old];
+                groupMembers[(size_t) (pointBegin + i * size + j)] = t;
+            }
+        }
+        pointBegin += size * count;
+    }
+    groupMemberBegin.push_back(pointBegin);
     groupEndBegin.push_back((int) groupEnds.size());
-    pointWireNode = std::move(wireNodeByGroup);
-    pointHeadNode = std::move(headNodeByGroup);
+    pointWireNode = std::move(wireNodeOrdered);
+    pointHeadNode = std::move(headNodeOrdered);
     wireInterior = M - 1;
-    mayTouch.assign(pointWireNode.size() + 8, 0);
-    for (auto* v : { &solveGroups, &slotEnd })
-        v->assign(groupNode.size(), 0);
-    for (auto* v : { &slotW0, &slotCc, &slotS, &slotW })
+    for (auto* v : { &groupW0, &groupCc, &groupS, &groupW })
         v->assign(groupNode.size(), 0.0);
-    for (auto* v : { &flatPoint, &flatSlot })
-        v->assign(pointWireNode.size(), 0);
-    for (auto* v : { &gq, &alphaQ, &betaQ })
-        v->assign(pointWireNode.size(), 0.0);
-    psiQ.assign(pointWireNode.size(), 0.0);
+    for (auto* v : { &gq, &alphaQ, &betaQ, &uFree, &dropped, &pointW0, &pointCc })
+        v->assign(numPoints, 0.0);
+    psiQ.assign(numPoints, 0.0);
     trialPsi = psiQ;
-    rLast.assign(pointWireNode.size(), std::numeric_limits<double>::quiet_NaN());
-    xiNext.assign(pointWireNode.size(), 0.0);
+    rLast.assign(numPoints, std::numeric_limits<double>::quiet_NaN());
+    xiNext.assign(numPoints, 0.0);
     xiNow = xiNext;
     xiPrev = xiNext;
     for (auto* v : { &a, &b, &r, &psi, &dpsi, &phiA })
@@ -120,107 +133,135 @@ void SnareContact::eliminateEnds(int g, const Membrane& carry, const SnareWires&
 
 namespace
 {
-// Free gaps xi* = u - w_c at n+1 for every contact point (two gathers per point; vectorises
-// on AVX2), and per point whether it may touch: xi* > 0, or it touched at n or n-1.
-SNARESIM_VECTOR_CLONES void computeGaps(double* __restrict xi, unsigned char* __restrict mayTouch, const double* __restrict u,
-                                        const double* __restrict w, const double* __restrict xiNow,
-                                        const double* __restrict xiPrev,
-                                        const int* __restrict wireNode, const int* __restrict headNode, int n)
-{
-    for (int p = 0; p < n; ++p)
-    {
-        const double x = u[wireNode[p]] - w[headNode[p]];
-        xi[p] = x;
-        mayTouch[p] = (unsigned char) ((x > 0.0) | (xiNow[p] > 0.0) | (xiPrev[p] > 0.0));
-    }
-}
-
 // The per-point coefficients of the quadratised solve for the Hertz exponent (beta = 1.5, so
-// psi = psiScale xi^(5/4) and psi' = gScale xi^(1/4)), branch-free so that it vectorises:
-// g is the tangent at the midpoint while xi^{n-1} and xi* both touch, else the secant.
-SNARESIM_VECTOR_CLONES void hertzCoefficients(int count, const int* __restrict flatPoint, const int* __restrict flatSlot,
-                                              const int* __restrict wireNode, const double* __restrict xiPrev,
-                                              const double* __restrict u, const double* __restrict psi,
-                                              const double* __restrict W0, const double* __restrict cc, double hs,
-                                              double gScale, double psiScale, double gammaS, double* __restrict gq,
-                                              double* __restrict alpha, double* __restrict beta)
+// psi = psiScale xi^(5/4) and psi' = gScale xi^(1/4)), for `count` points with their groups'
+// W0 and cc copied to them, branch-free so that it vectorises. xi* = u* - W0 is the prediction (no contact force); g is the tangent at
+// the midpoint while xi^{n-1} and xi* both touch, else the secant.
+SNARESIM_WIDE_VECTOR_CLONES void hertzCoefficients(int count, const int* __restrict wireNode, const double* __restrict xiPrev,
+                                                   const double* __restrict u, const double* __restrict psi,
+                                                   const double* __restrict W0, const double* __restrict cc, double hs,
+                                                   double gScale, double psiScale, double gammaS, double* __restrict gq,
+                                                   double* __restrict alpha, double* __restrict beta, double* __restrict uFree)
 {
     for (int k = 0; k < count; ++k)
     {
-        const int p = flatPoint[k], j = flatSlot[k];
-        const double a = xiPrev[p];
-        const double b = u[wireNode[p]] - W0[j];
+        const double a = xiPrev[k];
+        const double us = u[wireNode[k]];
+        const double b = us - W0[k];
         const double ap = a > 0.0 ? a : 0.0, bp = b > 0.0 ? b : 0.0;
         const double span = b - a;
-        const double secant = psiScale * (bp * std::sqrt(std::sqrt(bp)) - ap * std::sqrt(std::sqrt(ap))) / (span != 0.0 ? span : 1.0);
-        const double tangent = gScale * std::sqrt(std::sqrt(0.5 * (ap + bp)));
-        const double g = (a > 0.0) & (b > 0.0) ? tangent : secant;
+        // g in single precision: it may be any value without breaking the energy identity
+        // (header), so its rounding only perturbs the force law, by about 1e-7.
+        const float af = (float) ap, bf = (float) bp, mf = (float) (0.5 * (ap + bp)), sf = (float) span;
+        const float secant = (bf * std::sqrt(std::sqrt(bf)) - af * std::sqrt(std::sqrt(af))) / (sf != 0.0f ? sf : 1.0f);
+        const double g = (a > 0.0) & (b > 0.0) ? gScale * (double) std::sqrt(std::sqrt(mf)) : psiScale * (double) secant;
         const double B = 0.25 * g * g;
         const double d = 1.0 / (1.0 + gammaS * B);
         gq[k] = g;
-        alpha[k] = (g * psi[p] + B * (b - a)) * d;
-        beta[k] = cc[j] * hs * B * d;
+        alpha[k] = (g * psi[k] + B * (b - a)) * d;
+        beta[k] = cc[k] * hs * B * d;
+        uFree[k] = us;
     }
+}
+
+// Per point, with its group's S and W copied to it: the force f = alpha - beta S, the wire u = u* - gammaS f, the
+// gap xi^{n+1} = u - W and psi at n+1/2; `dropped` gets psi^2 where psi is reset.
+SNARESIM_WIDE_VECTOR_CLONES void finishPoints(int count, const double* __restrict alpha, const double* __restrict beta,
+                                              const double* __restrict gq, const double* __restrict S,
+                                              const double* __restrict W, double gammaS, const double* __restrict xiPrev,
+                                              const double* __restrict xiNow, double* __restrict uFree,
+                                              double* __restrict xiNext, double* __restrict psi, double* __restrict dropped)
+{
+    for (int k = 0; k < count; ++k)
+    {
+        const double f = alpha[k] - beta[k] * S[k];
+        const double u = uFree[k] - gammaS * f;
+        const double xiNew = u - W[k];
+        uFree[k] = u;
+        xiNext[k] = xiNew;
+        const double next = psi[k] + 0.5 * gq[k] * (xiNew - xiPrev[k]);
+        // psi at n+1/2 stands for the potential of xi^n and xi^{n+1}: on the step a point leaves
+        // the head it still holds what xi^n stored, and the next step gives that back as force.
+        // Apart at n and n+1, what is left is psi's drift: reset, so the next contact starts
+        // from zero.
+        const bool keep = (xiNew > 0.0) | (xiNow[k] > 0.0);
+        dropped[k] = keep ? 0.0 : next * next;
+        psi[k] = keep ? next : 0.0;
+    }
+}
+// One class of `count` groups of `size` points (member-major): per group S = sum alpha /
+// (1 + sum beta), the node W = W0 + cc h_s S.
+SNARESIM_WIDE_VECTOR_CLONES void solveClass(int size, int count, const double* __restrict alpha, const double* __restrict beta,
+                                            const double* __restrict W0, const double* __restrict cc, double hs,
+                                            double* __restrict S, double* __restrict W)
+{
+    for (int i = 0; i < count; ++i)
+    {
+        double sumAlpha = 0.0, sumBeta = 0.0;
+        for (int j = 0; j < size; ++j)
+        {
+            sumAlpha += alpha[j * count + i];
+            sumBeta += beta[j * count + i];
+        }
+        S[i] = sumAlpha / (1.0 + sumBeta);
+        W[i] = W0[i] + cc[i] * hs * S[i];
+    }
+}
+
+// Over all points: the sum of dropped, the largest gap (0 when all apart) and the number
+// touching, four points at a time (GCC's vector extensions, so that it vectorises).
+using Double4 = double __attribute__((vector_size(32)));
+using Long4 = long long __attribute__((vector_size(32)));
+SNARESIM_VECTOR_CLONES double summarise(int n, const double* __restrict xi, const double* __restrict dropped, double& deepest,
+                                        int& touching)
+{
+    Double4 sum = {}, top = {};
+    Long4 count = {};
+    int t = 0;
+    for (; t + 4 <= n; t += 4)
+    {
+        Double4 x, d;
+        std::memcpy(&x, xi + t, sizeof x);
+        std::memcpy(&d, dropped + t, sizeof d);
+        sum += d;
+        top = top < x ? x : top;
+        count -= x > 0.0; // true is -1
+    }
+    double total = (sum[0] + sum[1]) + (sum[2] + sum[3]);
+    deepest = std::max(std::max(top[0], top[1]), std::max(top[2], top[3]));
+    touching = (int) (count[0] + count[1] + count[2] + count[3]);
+    for (; t < n; ++t)
+    {
+        total += dropped[t];
+        deepest = std::max(deepest, xi[t]);
+        touching += xi[t] > 0.0 ? 1 : 0;
+    }
+    return total;
 }
 } // namespace
 
 SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wires)
 {
-    // Free gaps xi* = u* - w_c* at n+1 for every point (no contact or end forces yet): the
-    // prediction g is built from, and xi^{n+1} itself for the points of groups left alone.
-    const int n = (int) pointWireNode.size();
-    computeGaps(xiNext.data(), mayTouch.data(), wires.uNext.data(), carry.nextDisplacement().data(), xiNow.data(), xiPrev.data(),
-                pointWireNode.data(), pointHeadNode.data(), n);
-
-    // The groups to solve (those holding wire ends first, then those with a point that may
-    // touch) and their points in one flat list, so that the per-point work of all groups runs
-    // as one loop without dependencies between points. A group's points are consecutive, so
-    // its flags are read at once (eight bytes; mayTouch is padded).
-    int numSolve = 0, numFlat = 0;
-    auto enlist = [&](int g) {
-        solveGroups[(size_t) numSolve] = g;
-        for (int p = groupPointBegin[(size_t) g]; p < groupPointBegin[(size_t) g + 1]; ++p)
-        {
-            flatPoint[(size_t) numFlat] = p;
-            flatSlot[(size_t) numFlat++] = numSolve;
-        }
-        slotEnd[(size_t) numSolve++] = numFlat;
-    };
-    for (int g : endGroups)
-        enlist(g);
-    const unsigned char* flags = mayTouch.data();
-    for (int g : openGroups)
-    {
-        const int p0 = groupPointBegin[(size_t) g], size = groupPointBegin[(size_t) g + 1] - p0;
-        bool any = false;
-        if (size <= 8)
-        {
-            std::uint64_t word = 0;
-            std::memcpy(&word, flags + p0, sizeof word);
-            any = (word & (~std::uint64_t { 0 } >> (64 - 8 * size))) != 0;
-        }
-        else
-            for (int p = p0; p < p0 + size; ++p)
-                any = any || flags[p] != 0;
-        if (any)
-            enlist(g);
-    }
-
+    // Every group is solved every step: where a group's points are apart at n-1 and stay apart
+    // without forces, g = 0 gives no force and the free update stands, as if it were skipped;
+    // the work per step is the same whatever the wires do.
     const double h = carry.grid().spacing();
-    const double gammaS = wires.interiorGain();    // u^{n+1} per unit force density (N/m)
+    const double gammaS = wires.interiorGain(); // u^{n+1} per unit force density (N/m)
     double* u = wires.uNext.data();
+    const int numGroups = (int) groupNode.size();
 
     // Per group: the head node as the ends leave it, W = W0 + cc H (eq. 48-49).
-    for (int j = 0; j < numSolve; ++j)
+    const double gain = carry.forceGain() / (h * h); // w_c^{n+1} per unit force (N) at a node, times its response
+    const double* response = carry.responseScale();
+    const double* wNext = carry.nextDisplacement().data();
+    for (int g = 0; g < numGroups; ++g)
     {
-        const int g = solveGroups[(size_t) j];
-        const double c = carry.forceGainAt(groupNode[(size_t) g]) / (h * h); // w_c^{n+1} per unit force (N) at the node
-        double W0 = carry.nextAt(groupNode[(size_t) g]), cc = c;
-        if (groupEndBegin[(size_t) g + 1] > groupEndBegin[(size_t) g])
-            eliminateEnds(g, carry, wires, c, W0, cc);
-        slotW0[(size_t) j] = W0;
-        slotCc[(size_t) j] = cc;
+        const int node = groupNode[(size_t) g];
+        groupW0[(size_t) g] = wNext[node];
+        groupCc[(size_t) g] = response ? gain * response[node] : gain;
     }
+    for (int g : endGroups)
+        eliminateEnds(g, carry, wires, groupCc[(size_t) g], groupW0[(size_t) g], groupCc[(size_t) g]);
 
     // Per point: g^n is the slope of psi(xi) = sqrt(2 Phi(xi)) from xi^{n-1} to the prediction
     // xi* = u* - W0 (no contact force), so psi follows sqrt(2 Phi) closely where the prediction
@@ -228,72 +269,54 @@ SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wire
     // f = A + B xi^{n+1} with B = g^2/4, A = g psi^{n-1/2} - B xi^{n-1}, and
     // xi^{n+1} = xi* - gammaS f - cc h_s S, S = sum f over the group. Eliminating xi^{n+1}:
     // f = alpha - beta S with alpha = (A + B xi*) / (1 + gammaS B), beta = cc h_s B / (1 + gammaS B).
+    const int n = (int) pointWireNode.size();
+    spreadToPoints(groupW0, pointW0);
+    spreadToPoints(groupCc, pointCc);
     if (quarterPower)
-        hertzCoefficients(numFlat, flatPoint.data(), flatSlot.data(), pointWireNode.data(), xiPrev.data(), u, psiQ.data(),
-                          slotW0.data(), slotCc.data(), hs, gScale, psiScale, gammaS, gq.data(), alphaQ.data(), betaQ.data());
+        hertzCoefficients(n, pointWireNode.data(), xiPrev.data(), u, psiQ.data(), pointW0.data(), pointCc.data(), hs, gScale,
+                          psiScale, gammaS, gq.data(), alphaQ.data(), betaQ.data(), uFree.data());
     else
-        for (int k = 0; k < numFlat; ++k)
+        for (size_t t = 0; t < (size_t) n; ++t)
         {
-            const int p = flatPoint[(size_t) k], j = flatSlot[(size_t) k];
-            const double a = xiPrev[(size_t) p];
-            const double predicted = u[pointWireNode[(size_t) p]] - slotW0[(size_t) j];
+            const double us = u[pointWireNode[t]], a = xiPrev[t];
+            const double predicted = us - pointW0[t];
             const double gp = psiSlope(a, predicted);
             const double B = 0.25 * gp * gp;
             const double d = 1.0 / (1.0 + gammaS * B);
-            gq[(size_t) k] = gp;
-            alphaQ[(size_t) k] = (gp * psiQ[(size_t) p] + B * (predicted - a)) * d;
-            betaQ[(size_t) k] = slotCc[(size_t) j] * hs * B * d;
+            gq[t] = gp;
+            alphaQ[t] = (gp * psiQ[t] + B * (predicted - a)) * d;
+            betaQ[t] = pointCc[t] * hs * B * d;
+            uFree[t] = us;
         }
 
-    // Per group: S = sum alpha / (1 + sum beta), the node and the ends (eq. 32a).
-    for (int j = 0, k0 = 0; j < numSolve; k0 = slotEnd[(size_t) j++])
-    {
-        double sumAlpha = 0.0, sumBeta = 0.0;
-        for (int k = k0; k < slotEnd[(size_t) j]; ++k)
-        {
-            sumAlpha += alphaQ[(size_t) k];
-            sumBeta += betaQ[(size_t) k];
-        }
-        const double S = sumAlpha / (1.0 + sumBeta);
-        const double W = slotW0[(size_t) j] + slotCc[(size_t) j] * hs * S;
-        const int g = solveGroups[(size_t) j];
-        carry.setNextAt(groupNode[(size_t) g], W);
+    // Per group: S = sum alpha / (1 + sum beta) and W; then the node and the ends (eq. 32a).
+    for (const SizeClass& c : classes)
+        solveClass(c.size, c.groupCount, alphaQ.data() + c.pointBegin, betaQ.data() + c.pointBegin, groupW0.data() + c.groupBegin,
+                   groupCc.data() + c.groupBegin, hs, groupS.data() + c.groupBegin, groupW.data() + c.groupBegin);
+    carry.setNextAt(groupNode.data(), groupW.data(), numGroups);
+    for (int g : endGroups)
         for (int e = groupEndBegin[(size_t) g]; e < groupEndBegin[(size_t) g + 1]; ++e)
-            u[endWireNode[(size_t) groupEnds[(size_t) e]]] = W;
-        slotS[(size_t) j] = S;
-        slotW[(size_t) j] = W;
-    }
+            u[endWireNode[(size_t) groupEnds[(size_t) e]]] = groupW[(size_t) g];
 
     // Per point: the force, the wire, the gap and psi at n+1/2.
-    double removed = 0.0, deepest = 0.0;
-    int contacts = 0;
-    for (int k = 0; k < numFlat; ++k)
-    {
-        const int p = flatPoint[(size_t) k], j = flatSlot[(size_t) k];
-        const double f = alphaQ[(size_t) k] - betaQ[(size_t) k] * slotS[(size_t) j];
-        double& ui = u[pointWireNode[(size_t) p]];
-        ui -= gammaS * f;
-        const double xiNew = ui - slotW[(size_t) j];
-        xiNext[(size_t) p] = xiNew;
-        const double next = psiQ[(size_t) p] + 0.5 * gq[(size_t) k] * (xiNew - xiPrev[(size_t) p]);
-        // psi at n+1/2 stands for the potential of xi^n and xi^{n+1}: on the step a point leaves
-        // the head it still holds what xi^n stored, and the next step gives that back as force.
-        // Apart at n and n+1, what is left is psi's drift: reset, so the next contact starts
-        // from zero.
-        const bool touching = xiNew > 0.0;
-        const bool keep = touching || xiNow[(size_t) p] > 0.0;
-        removed += keep ? 0.0 : next * next;
-        psiQ[(size_t) p] = keep ? next : 0.0;
-        contacts += touching ? 1 : 0;
-        deepest = std::max(deepest, xiNew);
-    }
-    lastCorrection = 0.5 * hs * removed;
+    spreadToPoints(groupS, pointW0); // W0 and cc are done with: their places hold S and W
+    spreadToPoints(groupW, pointCc);
+    finishPoints(n, alphaQ.data(), betaQ.data(), gq.data(), pointW0.data(), pointCc.data(), gammaS, xiPrev.data(), xiNow.data(),
+                 uFree.data(), xiNext.data(), psiQ.data(), dropped.data());
+    for (int t = 0; t < n; ++t)
+        u[pointWireNode[(size_t) t]] = uFree[(size_t) t];
 
-    // Points of groups left alone keep xi^{n+1} = xi* <= 0: only solved groups can touch.
     SnareSolveResult result;
-    result.contacts = contacts;
-    result.maxPenetration_m = deepest;
+    const double sumRemoved = summarise(n, xiNext.data(), dropped.data(), result.maxPenetration_m, result.contacts);
+    lastCorrection = 0.5 * hs * sumRemoved;
     return result;
+}
+
+void SnareContact::spreadToPoints(const std::vector<double>& perGroup, std::vector<double>& perPoint) const
+{
+    for (const SizeClass& c : classes)
+        for (int j = 0; j < c.size; ++j)
+            std::copy_n(perGroup.data() + c.groupBegin, c.groupCount, perPoint.data() + c.pointBegin + j * c.groupCount);
 }
 
 SnareSolveResult SnareContact::stepNewton(Membrane& carry, SnareWires& wires)
@@ -303,19 +326,21 @@ SnareSolveResult SnareContact::stepNewton(Membrane& carry, SnareWires& wires)
     const double nan = std::numeric_limits<double>::quiet_NaN();
     for (int g = 0; g < (int) groupNode.size(); ++g)
     {
-        const int p0 = groupPointBegin[(size_t) g], p1 = groupPointBegin[(size_t) g + 1];
+        const int* p0 = groupMembers.data() + groupMemberBegin[(size_t) g];
+    const int* p1 = groupMembers.data() + groupMemberBegin[(size_t) g + 1];
         if (groupEndBegin[(size_t) g] == groupEndBegin[(size_t) g + 1])
         {
             // Fast path for a node without wire ends where no point can touch: the free
             // update stands and the gaps follow from it.
             const double W = carry.nextAt(groupNode[(size_t) g]);
             bool touching = false;
-            for (int p = p0; p < p1 && ! touching; ++p)
-                touching = xiPrev[(size_t) p] > 0.0 || u[pointWireNode[(size_t) p]] - W > 0.0;
+            for (const int* m = p0; m < p1 && ! touching; ++m)
+                touching = xiPrev[(size_t) *m] > 0.0 || u[pointWireNode[(size_t) *m]] - W > 0.0;
             if (! touching)
             {
-                for (int p = p0; p < p1; ++p)
+                for (const int* m = p0; m < p1; ++m)
                 {
+                    const int p = *m;
                     xiNext[(size_t) p] = u[pointWireNode[(size_t) p]] - W;
                     rLast[(size_t) p] = nan;
                 }
@@ -341,10 +366,12 @@ void SnareContact::solveGroup(int g, Membrane& carry, SnareWires& wires, SnareSo
     // Collisions (eq. 50) restricted to this node: r_m + gammaS psi_m + coupling sum psi + b_m = 0,
     // r = xi^{n+1} - xi^{n-1}, a = xi^{n-1}, b = a - (u* - W0). Forces are >= 0 and only lift
     // the node, so points apart at n-1 and apart without forces stay apart.
-    const int p0 = groupPointBegin[(size_t) g], p1 = groupPointBegin[(size_t) g + 1];
+    const int* p0 = groupMembers.data() + groupMemberBegin[(size_t) g];
+    const int* p1 = groupMembers.data() + groupMemberBegin[(size_t) g + 1];
     int m = 0;
-    for (int p = p0; p < p1; ++p)
+    for (const int* q = p0; q < p1; ++q)
     {
+        const int p = *q;
         const double aPrev = xiPrev[(size_t) p];
         const double xiFree = u[pointWireNode[(size_t) p]] - W0;
         if (aPrev > 0.0 || xiFree > 0.0)
@@ -376,8 +403,8 @@ void SnareContact::solveGroup(int g, Membrane& carry, SnareWires& wires, SnareSo
         }
         result.iterations = std::max(result.iterations, its);
     }
-    for (int p = p0; p < p1; ++p)
-        rLast[(size_t) p] = std::numeric_limits<double>::quiet_NaN();
+    for (const int* q = p0; q < p1; ++q)
+        rLast[(size_t) *q] = std::numeric_limits<double>::quiet_NaN();
     for (int i = 0; i < m; ++i)
     {
         psi[(size_t) i] = law.psi(r[(size_t) i], a[(size_t) i]); // eq. (30)
@@ -392,8 +419,9 @@ void SnareContact::solveGroup(int g, Membrane& carry, SnareWires& wires, SnareSo
         u[pointWireNode[(size_t) active[(size_t) i]]] -= gammaS * psi[(size_t) i];
     for (int e = groupEndBegin[(size_t) g]; e < groupEndBegin[(size_t) g + 1]; ++e)
         u[endWireNode[(size_t) groupEnds[(size_t) e]]] = W; // eq. (32a)
-    for (int p = p0; p < p1; ++p)
+    for (const int* q = p0; q < p1; ++q)
     {
+        const int p = *q;
         xiNext[(size_t) p] = u[pointWireNode[(size_t) p]] - W;
         if (xiNext[(size_t) p] > 0.0)
             ++result.contacts;
@@ -442,8 +470,9 @@ bool SnareContact::solveGroupNewton(int m, double gammaS, double coupling, int& 
         }
         if (! std::isfinite(stepSize))
             return false;
-        // Converged, or stalled at round-off after quadratic convergence.
-        if (stepSize <= tolerance * scale || (stepSize >= lastStep && stepSize <= 1.0e-11 * scale))
+        // Converged, or stalled at round-off after quadratic convergence: the secants of
+        // eq. (30) cancel where r << a, which leaves a floor of up to about 1e-10 of the scale.
+        if (stepSize <= tolerance * scale || (stepSize >= lastStep && stepSize <= 1.0e-9 * scale))
             return true;
         lastStep = stepSize;
     }

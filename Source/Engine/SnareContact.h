@@ -10,6 +10,11 @@
 // own response plus the shared node), so its Newton step is a Sherman-Morrison solve, O(size).
 // An attached end at the node is eliminated first: it only stiffens the node (c -> c').
 //
+// Layout: the node groups are sorted into classes of equal size; a class of G groups of K
+// points stores its points member-major (member j of group i at j G + i), so that every
+// per-point and per-group loop of the quadratised solve runs over contiguous arrays and
+// vectorises, with one gather (the wire node) per point.
+//
 // Two schemes for the collision term (SnareSpec::scheme):
 // - newton: the paper's eq. (30), f = (Phi(xi^{n+1}) - Phi(xi^{n-1})) / (xi^{n+1} - xi^{n-1}),
 //   solved per node group by Newton-Raphson; the energy term is h_s sum mu_t+ Phi(xi).
@@ -27,6 +32,9 @@
 //   recomputed, so a little can be left then. Where a point is apart at n and n+1 it is reset
 //   to zero and the energy removed, h_s psi^2 / 2 >= 0, is booked as a loss (stepLoss()),
 //   so the scheme stays passive and the ledger balances.
+//   Every group is solved on every step, the points apart included (g = 0 there: no force), so
+//   a step costs the same whatever the wires do; g is computed in single precision (any g
+//   keeps the identity), everything that enters the energy in double.
 
 #include "Membrane.h"
 #include "PowerLawPotential.h"
@@ -75,7 +83,7 @@ public:
     double quadratisedEnergy() const; // h_s sum psi^2 / 2
     int numPoints() const { return (int) pointWireNode.size(); }
     // xi = u - w_c per contact point at the latest completed step (after Drum::step), in the
-    // coupling's own order (grouped by head node)
+    // coupling's own order (the class layout above)
     const std::vector<double>& gaps() const { return xiNow; }
     // the same gap for interior node l (1 ... M-1) of wire i
     double gapAt(int wire, int l) const;
@@ -119,6 +127,8 @@ private:
     bool solveGroupNewton(int m, double gammaS, double coupling, int& iterations);
     bool solveGroupReduced(int m, double gammaS, double coupling, int& iterations);
     double solveFallback(int m, double gammaS, double coupling);
+    // Copy a value per group to each of the group's points.
+    void spreadToPoints(const std::vector<double>& perGroup, std::vector<double>& perPoint) const;
 
     PowerLawPotential law;
     CollisionScheme method;
@@ -128,26 +138,31 @@ private:
     double halfExponent = 0.25; // (beta - 1) / 2
     bool quarterPower = true;   // beta = 1.5: g = gScale xi^(1/4)
     double lastCorrection = 0.0;
-    // contact points: wire-array index of the node, head node, grouped by head node (CSR)
+    // contact points (in class layout, above): wire-array index of the node, head node
     std::vector<int> pointWireNode, pointHeadNode;
     std::vector<int> endWireNode, endHeadNode;
-    std::vector<int> groupNode, groupPointBegin, groupEndBegin;
-    std::vector<int> groupEnds;
+    // groups (one per head node), class by class: the node, its points and its ends (CSR)
+    std::vector<int> groupNode, groupMemberBegin, groupMembers, groupEndBegin, groupEnds;
+    std::vector<int> endGroups; // groups holding wire ends
+    struct SizeClass
+    {
+        int size, groupBegin, groupCount, pointBegin;
+    };
+    std::vector<SizeClass> classes;
     std::vector<double> xiNext, xiNow, xiPrev;
     std::vector<double> rLast; // last step's root per point (NaN when it was not solved): Newton's start
     std::vector<double> psiQ;  // quadratised: psi at n+1/2 (after step) / n-1/2 (before), per point
     std::vector<double> trialPsi; // psiQ before the step (saveTrial)
-    std::vector<int> endGroups;              // groups holding wire ends (solved every step)
-    std::vector<int> openGroups;             // groups without wire ends
-    std::vector<unsigned char> mayTouch;     // quadratised: per point, xi*, xi^n or xi^{n-1} > 0 (padded by 8)
     std::vector<int> pointOfWireNode;        // wire i, interior node l -> point (i * (M - 1) + l - 1)
     int wireInterior = 0;                    // interior nodes per wire, M - 1
-    // per-group scratch (sized for the largest group)
+    // Newton: per-group scratch (sized for the largest group)
     std::vector<int> active;
     std::vector<double> a, b, r, psi, dpsi, phiA;
-    // quadratised: the groups solved this step (slots) and their points in one flat list
-    std::vector<int> solveGroups, slotEnd, flatPoint, flatSlot;
-    std::vector<double> slotW0, slotCc, slotS, slotW, gq, alphaQ, betaQ;
+    // quadratised: per group W0, c', S = sum f, W; per point g, alpha, beta, u*, and the
+    // energy psi's reset removed
+    std::vector<double> groupW0, groupCc, groupS, groupW;
+    std::vector<double> gq, alphaQ, betaQ, uFree, dropped;
+    std::vector<double> pointW0, pointCc; // W0 and cc of each point's group (then S and W)
 
     SnareWires& snares;
     Membrane& head; // the carry head

@@ -184,6 +184,37 @@ double highBandShare(bool snaresOn, CollisionScheme scheme)
 }
 } // namespace
 
+TEST_CASE("each snare point's gap is its wire node's height above the head node it maps to", "[drum][snares]")
+{
+    // The contact stores its points grouped by head node, not in wire order: gapAt must still
+    // find every wire node's own gap, u - w_c, through a strike and its buzz.
+    DrumConfig cfg = test::wholeDrum();
+    cfg.snares.scheme = schemeOf(GENERATE(0, 1));
+    Drum drum(cfg);
+    drum.strike(5.0, 0.3, 0.0);
+    const auto& wires = drum.snareWires();
+    const auto& grid = drum.carry().grid();
+    int touched = 0;
+    double worst = 0.0, largest = 0.0;
+    for (int n = 0; n < (int) (0.010 * cfg.sampleRate_Hz); ++n)
+    {
+        drum.step();
+        for (int i = 0; i < wires.count(); ++i)
+            for (int l = 1; l < wires.intervals(); ++l)
+            {
+                const int node = grid.nearestInterior(wires.nodeX(l), wires.wireY(i));
+                const double expected = wires.uNow[(size_t) (i * wires.nodesPerWire() + l)] - drum.carry().displacement()[(size_t) node];
+                const double gap = drum.snareContact().gapAt(i, l);
+                worst = std::max(worst, std::abs(gap - expected));
+                largest = std::max(largest, std::abs(expected));
+                touched += gap > 0.0 ? 1 : 0;
+            }
+    }
+    INFO("largest |gap| " << largest << " m, worst mismatch " << worst << " m");
+    REQUIRE(touched > 0);
+    CHECK(worst <= 1e-12 * largest);
+}
+
 TEST_CASE("the snares audibly matter: much more energy above 2 kHz when engaged", "[drum][snares]")
 {
     const CollisionScheme scheme = schemeOf(GENERATE(0, 1));
