@@ -87,7 +87,7 @@ SnareContact::SnareContact(const SnareSpec& spec, SnareWires& wires, Membrane& c
     wireInterior = M - 1;
     for (auto* v : { &groupW0, &groupCc, &groupS, &groupW })
         v->assign(groupNode.size(), 0.0);
-    for (auto* v : { &gq, &alphaQ, &betaQ, &uFree, &dropped, &pointW0, &pointCc })
+    for (auto* v : { &gq, &alphaQ, &betaQ, &uFree, &dropped, &pointW0, &pointCc, &pointS, &pointW })
         v->assign(numPoints, 0.0);
     psiQ.assign(numPoints, 0.0);
     trialPsi = psiQ;
@@ -299,9 +299,9 @@ SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wire
             u[endWireNode[(size_t) groupEnds[(size_t) e]]] = groupW[(size_t) g];
 
     // Per point: the force, the wire, the gap and psi at n+1/2.
-    spreadToPoints(groupS, pointW0); // W0 and cc are done with: their places hold S and W
-    spreadToPoints(groupW, pointCc);
-    finishPoints(n, alphaQ.data(), betaQ.data(), gq.data(), pointW0.data(), pointCc.data(), gammaS, xiPrev.data(), xiNow.data(),
+    spreadToPoints(groupS, pointS);
+    spreadToPoints(groupW, pointW);
+    finishPoints(n, alphaQ.data(), betaQ.data(), gq.data(), pointS.data(), pointW.data(), gammaS, xiPrev.data(), xiNow.data(),
                  uFree.data(), xiNext.data(), psiQ.data(), dropped.data());
     for (int t = 0; t < n; ++t)
         u[pointWireNode[(size_t) t]] = uFree[(size_t) t];
@@ -327,7 +327,7 @@ SnareSolveResult SnareContact::stepNewton(Membrane& carry, SnareWires& wires)
     for (int g = 0; g < (int) groupNode.size(); ++g)
     {
         const int* p0 = groupMembers.data() + groupMemberBegin[(size_t) g];
-    const int* p1 = groupMembers.data() + groupMemberBegin[(size_t) g + 1];
+        const int* p1 = groupMembers.data() + groupMemberBegin[(size_t) g + 1];
         if (groupEndBegin[(size_t) g] == groupEndBegin[(size_t) g + 1])
         {
             // Fast path for a node without wire ends where no point can touch: the free

@@ -162,7 +162,7 @@ private:
     // energy psi's reset removed
     std::vector<double> groupW0, groupCc, groupS, groupW;
     std::vector<double> gq, alphaQ, betaQ, uFree, dropped;
-    std::vector<double> pointW0, pointCc; // W0 and cc of each point's group (then S and W)
+    std::vector<double> pointW0, pointCc, pointS, pointW; // W0, cc, S and W of each point's group
 
     SnareWires& snares;
     Membrane& head; // the carry head
