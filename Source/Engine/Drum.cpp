@@ -189,13 +189,12 @@ void Drum::fillSnapshot(DrumSnapshot& out) const noexcept
     float peak = 0.0f;
     auto sampleHead = [&](const Membrane& head, std::array<float, P * P>& dst) {
         const auto& grid = head.grid();
-        const auto& w = head.displacement();
         for (int j = 0; j < P; ++j)
             for (int i = 0; i < P; ++i)
             {
                 const double x = ((i + 0.5) / P * 2.0 - 1.0) * R, y = ((j + 0.5) / P * 2.0 - 1.0) * R;
                 const int node = grid.nearestInterior(x, y);
-                const float v = node >= 0 ? (float) w[(size_t) node] : 0.0f;
+                const float v = node >= 0 ? (float) head.nowAt(node) : 0.0f;
                 dst[(size_t) (j * P + i)] = v;
                 out.onHead[(size_t) (j * P + i)] = node >= 0 ? 1 : 0;
                 peak = std::max(peak, std::abs(v));

@@ -13,6 +13,13 @@
 namespace snaresim
 {
 
+// How a head stores its state and runs its free update (eq. 22).
+enum class HeadPrecision
+{
+    double_precision, // the reference: the energy identity holds to double round-off
+    single_precision  // twice the vector width; the energy identity holds to float round-off only
+};
+
 // A head: lossy 2D wave equation, eq. (2)-(4), fixed rim.
 struct MembraneSpec
 {
@@ -27,6 +34,7 @@ struct MembraneSpec
     double gridTension_N_per_m = 0.0;
     double gridSigma1_m2_per_s = -1.0;
     double gridCoarseness = 1.0;        // h = coarseness * h_min(eq. 39); >= 1 (from the schema)
+    HeadPrecision precision = HeadPrecision::double_precision; // from the schema (double in the air box)
 };
 
 // A mallet: lumped mass with power-law contact, eq. (9)-(11).

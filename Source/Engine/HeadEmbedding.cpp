@@ -15,6 +15,8 @@ namespace snaresim
 
 HeadEmbedding::HeadEmbedding(AirBox& a, Membrane& m, double z, double cx, double cy) : air(a), head(m)
 {
+    if (head.singlePrecision())
+        throw std::invalid_argument("head embedding: the air box needs heads in double precision");
     const double R = head.grid().radius(), ha = air.spacing();
     const double halfX = 0.5 * air.nx() * ha, halfY = 0.5 * air.ny() * ha;
     if (std::abs(cx) + R + ha > halfX || std::abs(cy) + R + ha > halfY)

@@ -43,9 +43,20 @@ Membrane::Membrane(const MembraneSpec& s, double timeStep, double reserve)
             rowEnd[(size_t) iy] = last + 1;
         }
     }
-    wNext.assign((size_t) g.numNodes(), 0.0);
-    wNow = wNext;
-    wPrev = wNext;
+    single = s.precision == HeadPrecision::single_precision;
+    if (single)
+    {
+        fNext.assign((size_t) g.numNodes(), 0.0f);
+        fNow = fNext;
+        fPrev = fNext;
+        fMask.assign(g.mask().begin(), g.mask().end());
+    }
+    else
+    {
+        wNext.assign((size_t) g.numNodes(), 0.0);
+        wNow = wNext;
+        wPrev = wNext;
+    }
     setCoefficients(s.tension_N_per_m, s.sigma0_per_s, s.sigma1_m2_per_s);
 }
 
@@ -87,15 +98,56 @@ SNARESIM_WIDE_VECTOR_CLONES double updateRow(double* __restrict out, const doubl
         acc[0] += out[m];
     return (acc[0] + acc[2]) + (acc[1] + acc[3]);
 }
+
+// Eq. (22) in single precision over the whole padded grid, row after row without a break
+// (nodes on and outside the rim are multiplied by the mask, so they stay zero): the disc's
+// short rows cost more in loop ends than the corners' extra nodes in float. Written as an
+// increment, w+ = w + r v + cl L w + cs L v with v = w - w- and L the unscaled 5-point
+// Laplacian, so that no coefficient near 2 multiplies w: a float
+// coefficient's rounding then moves the modes by parts in 1e8 of their small restoring term,
+// not of 2 w. Returns the sum of out, in double.
+SNARESIM_WIDE_VECTOR_CLONES double updateGridFloat(float* __restrict out, const float* __restrict w, const float* __restrict wp,
+                                                   const float* __restrict mask, int n, int count, float r, float cl, float cs,
+                                                   float push)
+{
+    for (int m = 0; m < count; ++m)
+    {
+        const float c = w[m], v = c - wp[m];
+        const float nb = w[m - 1] + w[m + 1] + w[m - n] + w[m + n];
+        const float nbp = wp[m - 1] + wp[m + 1] + wp[m - n] + wp[m + n];
+        out[m] = mask[m] * (c + (r * v + cl * (nb - 4.0f * c) + cs * ((nb - nbp) - 4.0f * v) + push));
+    }
+    // sixteen running sums: two vectors of doubles per vector of floats, and enough of them
+    // that the adds' latency does not bind
+    double acc[16] = {};
+    int m = 0;
+    for (; m + 16 <= count; m += 16)
+        for (int j = 0; j < 16; ++j)
+            acc[j] += (double) out[m + j];
+    for (; m < count; ++m)
+        acc[0] += (double) out[m];
+    for (int j = 1; j < 16; ++j)
+        acc[0] += acc[j];
+    return acc[0];
+}
 } // namespace
 
-// Row by row over the disc's runs of interior nodes (nodes outside stay zero, the fixed rim),
-// summing w^{n+1} for the cavity on the way. updateRow is built for AVX-512, AVX2+FMA and
-// baseline x86-64; the loader picks the one the CPU runs.
+// Double: row by row over the disc's runs of interior nodes (nodes outside stay zero, the
+// fixed rim); single: the whole grid at once (updateGridFloat). Both sum w^{n+1} for the
+// cavity on the way and are built for AVX-512, AVX2+FMA and baseline x86-64; the loader picks
+// the one the CPU runs.
 void Membrane::computeFree(double pressure)
 {
     const int n = g.width();
     const double push = forceGain() * pressure; // eq. (22) with the pressure term, force density p
+    if (single)
+    {
+        // rows 1 .. n-2, whole: every neighbour read stays inside the padded grid
+        const double lambda2 = kk * T / (rho * h * h), s = 2.0 * sigma1 * k / (h * h);
+        sumNext = updateGridFloat(fNext.data() + n, fNow.data() + n, fPrev.data() + n, fMask.data() + n, n, n * (n - 2),
+                                  (float) ((1.0 - sigma0 * k) / q), (float) (lambda2 / q), (float) (s / q), (float) push);
+        return;
+    }
     double sum = 0.0;
     for (int iy = 1; iy < n - 1; ++iy)
     {
@@ -112,21 +164,40 @@ void Membrane::applyForce(const GridDistribution& d, double force)
     const double c = forceGain() * force;
     for (int j = 0; j < d.size; ++j)
     {
-        const double dw = response ? c * d.g[(size_t) j] * response[d.index[(size_t) j]] : c * d.g[(size_t) j];
-        wNext[(size_t) d.index[(size_t) j]] += dw;
-        sumNext += dw;
+        const int i = d.index[(size_t) j];
+        const double dw = response ? c * d.g[(size_t) j] * response[i] : c * d.g[(size_t) j];
+        if (single)
+        {
+            const float before = fNext[(size_t) i];
+            fNext[(size_t) i] = (float) ((double) before + dw);
+            sumNext += (double) fNext[(size_t) i] - (double) before;
+        }
+        else
+        {
+            wNext[(size_t) i] += dw;
+            sumNext += dw;
+        }
     }
 }
 
-double Membrane::sample(const GridDistribution& d, const std::vector<double>& w) const
+double Membrane::sample(const GridDistribution& d, int level) const
 {
-    double s = 0.0;
-    for (int j = 0; j < d.size; ++j)
-        s += d.g[(size_t) j] * w[(size_t) d.index[(size_t) j]];
-    return h * h * s;
+    return withState([&](const auto& next, const auto& now, const auto& prev) {
+        const auto& w = level == 0 ? next : level == 1 ? now : prev;
+        double s = 0.0;
+        for (int j = 0; j < d.size; ++j)
+            s += d.g[(size_t) j] * (double) w[(size_t) d.index[(size_t) j]];
+        return h * h * s;
+    });
 }
 
 double Membrane::energy() const
+{
+    return withState([this](const auto& next, const auto& now, const auto&) { return energyOf(next.data(), now.data()); });
+}
+
+template <class Real>
+double Membrane::energyOf(const Real* wNext, const Real* wNow) const
 {
     const int n = g.width();
     double kinetic = 0.0, potential = 0.0, sigma1Term = 0.0;
@@ -134,10 +205,11 @@ double Membrane::energy() const
         for (int ix = 0; ix < n - 1; ++ix)
         {
             const size_t i = (size_t) (iy * n + ix);
-            const double v = wNext[i] - wNow[i];
+            const double now = wNow[i], next = wNext[i];
+            const double v = next - now;
             kinetic += v * v;
-            const double dxNow = wNow[i + 1] - wNow[i], dxNext = wNext[i + 1] - wNext[i];
-            const double dyNow = wNow[i + (size_t) n] - wNow[i], dyNext = wNext[i + (size_t) n] - wNext[i];
+            const double dxNow = (double) wNow[i + 1] - now, dxNext = (double) wNext[i + 1] - next;
+            const double dyNow = (double) wNow[i + (size_t) n] - now, dyNext = (double) wNext[i + (size_t) n] - next;
             potential += dxNow * dxNext + dyNow * dyNext;
             const double dvx = dxNext - dxNow, dvy = dyNext - dyNow;
             sigma1Term += dvx * dvx + dvy * dvy;
@@ -151,16 +223,22 @@ double Membrane::stepLoss() const
 {
     if (sigma0 == 0.0 && sigma1 == 0.0)
         return 0.0;
+    return withState([this](const auto& next, const auto&, const auto& prev) { return stepLossOf(next.data(), prev.data()); });
+}
+
+template <class Real>
+double Membrane::stepLossOf(const Real* wNext, const Real* wPrev) const
+{
     const int n = g.width();
     double v2 = 0.0, grad2 = 0.0;
     for (int iy = 0; iy < n - 1; ++iy)
         for (int ix = 0; ix < n - 1; ++ix)
         {
             const size_t i = (size_t) (iy * n + ix);
-            const double d = wNext[i] - wPrev[i];
+            const double d = (double) wNext[i] - (double) wPrev[i];
             v2 += d * d;
-            const double dx = (wNext[i + 1] - wPrev[i + 1]) - d;
-            const double dy = (wNext[i + (size_t) n] - wPrev[i + (size_t) n]) - d;
+            const double dx = ((double) wNext[i + 1] - (double) wPrev[i + 1]) - d;
+            const double dy = ((double) wNext[i + (size_t) n] - (double) wPrev[i + (size_t) n]) - d;
             grad2 += dx * dx + dy * dy;
         }
     // k q^n = k [2 rho sigma0 h^2 |dt. w|^2 + 2 rho sigma1 |grad dt. w|^2], dt. w = (w+ - w-) / 2k
@@ -171,22 +249,27 @@ void Membrane::advance()
 {
     std::swap(wPrev, wNow);
     std::swap(wNow, wNext);
+    std::swap(fPrev, fNow);
+    std::swap(fNow, fNext);
 }
 
 void Membrane::clear()
 {
     sumNext = 0.0;
-    std::fill(wNext.begin(), wNext.end(), 0.0);
-    std::fill(wNow.begin(), wNow.end(), 0.0);
-    std::fill(wPrev.begin(), wPrev.end(), 0.0);
+    for (auto* w : { &wNext, &wNow, &wPrev })
+        std::fill(w->begin(), w->end(), 0.0);
+    for (auto* w : { &fNext, &fNow, &fPrev })
+        std::fill(w->begin(), w->end(), 0.0f);
 }
 
 bool Membrane::isFinite() const
 {
-    for (double v : wNow)
-        if (! std::isfinite(v))
-            return false;
-    return true;
+    return withState([](const auto&, const auto& now, const auto&) {
+        for (auto v : now)
+            if (! std::isfinite(v))
+                return false;
+        return true;
+    });
 }
 
 } // namespace snaresim

@@ -5,6 +5,9 @@
 // backward-difference loss; with it, h^{n+1/2} - h^{n-1/2} = -k q^n exactly, q^n >= 0.
 // A component: its state, free update (computeFree), energy() and stepLoss(); the couplings'
 // forces come in through applyForce / setNextAt, the cavity's pressure through computeFree.
+// The state is double, or float (MembraneSpec::precision): the free update then runs twice
+// as many nodes per vector and the energy identity holds to float round-off; everything read
+// out (nextAt, samples, energy) is double either way.
 
 #include "CircularGrid.h"
 #include "DrumConfig.h"
@@ -49,41 +52,53 @@ public:
     const double* responseScale() const { return response; }
 
     // h^2 g^T w at time n+1, n or n-1.
-    double sampleNext(const GridDistribution& d) const { return sample(d, wNext); }
-    double sampleNow(const GridDistribution& d) const { return sample(d, wNow); }
-    double samplePrev(const GridDistribution& d) const { return sample(d, wPrev); }
+    double sampleNext(const GridDistribution& d) const { return sample(d, 0); }
+    double sampleNow(const GridDistribution& d) const { return sample(d, 1); }
+    double samplePrev(const GridDistribution& d) const { return sample(d, 2); }
 
     // Energy h^{n+1/2} of eq. (35) (with the sigma1 term) from w^{n+1}, w^n.
     double energy() const;
     // k q^n: energy removed by the losses over the step from n-1/2 to n+1/2.
     double stepLoss() const;
 
-    // w^{n+1} at one node, for couplings that act node by node.
-    double nextAt(int node) const { return wNext[(size_t) node]; }
+    bool singlePrecision() const { return single; }
+
+    // w at one node at n+1, n or n-1, for couplings that act node by node.
+    double nextAt(int node) const { return single ? (double) fNext[(size_t) node] : wNext[(size_t) node]; }
+    double nowAt(int node) const { return single ? (double) fNow[(size_t) node] : wNow[(size_t) node]; }
+    double prevAt(int node) const { return single ? (double) fPrev[(size_t) node] : wPrev[(size_t) node]; }
     void setNextAt(int node, double value)
     {
+        if (single)
+        {
+            const float v = (float) value;
+            sumNext += (double) v - (double) fNext[(size_t) node];
+            fNext[(size_t) node] = v;
+            return;
+        }
         sumNext += value - wNext[(size_t) node];
         wNext[(size_t) node] = value;
     }
     // The same at count distinct nodes.
     void setNextAt(const int* nodes, const double* values, int count)
     {
-        double* w = wNext.data();
-        double c0 = 0.0, c1 = 0.0;
-        int j = 0;
-        for (; j + 2 <= count; j += 2)
-        {
-            c0 += values[j] - w[nodes[j]];
-            c1 += values[j + 1] - w[nodes[j + 1]];
-        }
-        for (; j < count; ++j)
-            c0 += values[j] - w[nodes[j]];
-        for (j = 0; j < count; ++j)
-            w[nodes[j]] = values[j];
-        sumNext += c0 + c1;
+        if (single)
+            setNextAtIn(fNext.data(), nodes, values, count);
+        else
+            setNextAtIn(wNext.data(), nodes, values, count);
+    }
+    // w^{n+1} at count nodes, into out.
+    void nextAt(const int* nodes, double* out, int count) const
+    {
+        if (single)
+            for (int j = 0; j < count; ++j)
+                out[j] = (double) fNext[(size_t) nodes[j]];
+        else
+            for (int j = 0; j < count; ++j)
+                out[j] = wNext[(size_t) nodes[j]];
     }
     // w^{n+1} copied out and back (w sized by the first call), for a step's coupling solved
-    // more than once (DrumAir).
+    // more than once (DrumAir). Double precision only (the air box's heads).
     void saveNext(std::vector<double>& w, double& sum) const
     {
         w = wNext;
@@ -102,13 +117,41 @@ public:
     void advance();
     void clear();
 
+    // The state arrays themselves, double precision only (empty otherwise): for the air box's
+    // embedding (HeadEmbedding), which updates w^{n+1} with the air.
     const std::vector<double>& nextDisplacement() const { return wNext; } // w^{n+1}
-    const std::vector<double>& displacement() const { return wNow; }      // w^n
     const std::vector<double>& previousDisplacement() const { return wPrev; } // w^{n-1}
     bool isFinite() const;
 
 private:
-    double sample(const GridDistribution& d, const std::vector<double>& w) const;
+    template <class Real>
+    void setNextAtIn(Real* w, const int* nodes, const double* values, int count)
+    {
+        double c0 = 0.0, c1 = 0.0;
+        int j = 0;
+        for (; j + 2 <= count; j += 2)
+        {
+            const Real v0 = (Real) values[j], v1 = (Real) values[j + 1];
+            c0 += (double) v0 - (double) w[nodes[j]];
+            c1 += (double) v1 - (double) w[nodes[j + 1]];
+        }
+        for (; j < count; ++j)
+            c0 += (double) (Real) values[j] - (double) w[nodes[j]];
+        for (j = 0; j < count; ++j)
+            w[nodes[j]] = (Real) values[j];
+        sumNext += c0 + c1;
+    }
+    // f(next, now, prev) on the state arrays in their precision.
+    template <class F>
+    decltype(auto) withState(F&& f) const
+    {
+        return single ? f(fNext, fNow, fPrev) : f(wNext, wNow, wPrev);
+    }
+    double sample(const GridDistribution& d, int level) const;
+    template <class Real>
+    double energyOf(const Real* wNext, const Real* wNow) const;
+    template <class Real>
+    double stepLossOf(const Real* wNext, const Real* wPrev) const;
 
     CircularGrid g;
     double k, kk, h;
@@ -119,7 +162,10 @@ private:
     std::vector<int> rowBegin, rowEnd;      // columns holding interior nodes, per row
     double sumNext = 0.0;                   // sum(w^{n+1})
     const double* response = nullptr;       // per-node response to a force (setResponse), or 1
-    std::vector<double> wNext, wNow, wPrev;
+    bool single = false;
+    std::vector<double> wNext, wNow, wPrev; // double precision, else empty
+    std::vector<float> fNext, fNow, fPrev;  // single precision, else empty
+    std::vector<float> fMask;               // single precision: the grid's mask
 };
 
 } // namespace snaresim

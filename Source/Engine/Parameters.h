@@ -52,6 +52,8 @@ enum class ParamId : std::size_t
     airLoss,
     // how the host's offline renders play (appended likewise)
     offlineAirBox,
+    // the heads' arithmetic (appended likewise)
+    headPrecision,
     count
 };
 

@@ -190,20 +190,23 @@ SNARESIM_WIDE_VECTOR_CLONES void finishPoints(int count, const double* __restric
     }
 }
 // One class of `count` groups of `size` points (member-major): per group S = sum alpha /
-// (1 + sum beta), the node W = W0 + cc h_s S.
+// (1 + sum beta), the node W = W0 + cc h_s S. The sums run member by member over the groups
+// (contiguous, so they vectorise), each group's in member order; S and W hold them meanwhile.
 SNARESIM_WIDE_VECTOR_CLONES void solveClass(int size, int count, const double* __restrict alpha, const double* __restrict beta,
                                             const double* __restrict W0, const double* __restrict cc, double hs,
                                             double* __restrict S, double* __restrict W)
 {
     for (int i = 0; i < count; ++i)
-    {
-        double sumAlpha = 0.0, sumBeta = 0.0;
-        for (int j = 0; j < size; ++j)
+        S[i] = W[i] = 0.0; // a class of size 0: nodes that hold wire ends only
+    for (int j = 0; j < size; ++j)
+        for (int i = 0; i < count; ++i)
         {
-            sumAlpha += alpha[j * count + i];
-            sumBeta += beta[j * count + i];
+            S[i] += alpha[j * count + i];
+            W[i] += beta[j * count + i];
         }
-        S[i] = sumAlpha / (1.0 + sumBeta);
+    for (int i = 0; i < count; ++i)
+    {
+        S[i] = S[i] / (1.0 + W[i]);
         W[i] = W0[i] + cc[i] * hs * S[i];
     }
 }
@@ -253,13 +256,9 @@ SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wire
     // Per group: the head node as the ends leave it, W = W0 + cc H (eq. 48-49).
     const double gain = carry.forceGain() / (h * h); // w_c^{n+1} per unit force (N) at a node, times its response
     const double* response = carry.responseScale();
-    const double* wNext = carry.nextDisplacement().data();
+    carry.nextAt(groupNode.data(), groupW0.data(), numGroups);
     for (int g = 0; g < numGroups; ++g)
-    {
-        const int node = groupNode[(size_t) g];
-        groupW0[(size_t) g] = wNext[node];
-        groupCc[(size_t) g] = response ? gain * response[node] : gain;
-    }
+        groupCc[(size_t) g] = response ? gain * response[groupNode[(size_t) g]] : gain;
     for (int g : endGroups)
         eliminateEnds(g, carry, wires, groupCc[(size_t) g], groupW0[(size_t) g], groupCc[(size_t) g]);
 
@@ -588,11 +587,9 @@ void SnareContact::advance()
 
 void SnareContact::layOnHead()
 {
-    const auto& now = head.displacement();
-    const auto& prev = head.previousDisplacement();
     auto lay = [&](int wireNode, int headNode) {
-        snares.uNow[(size_t) wireNode] = snares.uNext[(size_t) wireNode] = now[(size_t) headNode];
-        snares.uPrev[(size_t) wireNode] = prev[(size_t) headNode];
+        snares.uNow[(size_t) wireNode] = snares.uNext[(size_t) wireNode] = head.nowAt(headNode);
+        snares.uPrev[(size_t) wireNode] = head.prevAt(headNode);
     };
     for (size_t p = 0; p < pointWireNode.size(); ++p)
         lay(pointWireNode[p], pointHeadNode[p]);

@@ -126,7 +126,7 @@ void SnarePlot::add(std::int64_t time, const Drum& drum)
         return;
 
     const auto& u = drum.snareWires().uNow;
-    const auto& w = drum.carry().displacement();
+    const Membrane& carry = drum.carry();
     double sum = 0.0, lo = std::numeric_limits<double>::infinity(), hi = -lo;
     double carrySum = 0.0;
     int carryCount = 0;
@@ -138,7 +138,7 @@ void SnarePlot::add(std::int64_t time, const Drum& drum)
         hi = std::max(hi, v);
         if (headNodes[k] >= 0)
         {
-            carrySum += w[(std::size_t) headNodes[k]];
+            carrySum += carry.nowAt(headNodes[k]);
             ++carryCount;
         }
     }

@@ -121,7 +121,7 @@ std::vector<double> batterAlone(const AirBoxSpec* box, int steps)
         if (air)
             air->advance();
         head.advance();
-        w.push_back(head.displacement()[(size_t) centre]);
+        w.push_back(head.nowAt(centre));
     }
     return w;
 }

@@ -106,9 +106,12 @@ TEST_CASE("the product's grids keep the low batter modes at the Bessel frequenci
 {
     // The product's grids (makeDrumConfig at 48 kHz, designed for the largest tension the
     // control allows) at Quality 2 (the default, twice the bound) and 1, the batter alone and
-    // lossless. Run with -s to see the frequencies.
+    // lossless, with its state in double and in single precision. Run with -s to see the
+    // frequencies.
     const double quality = GENERATE(2.0, 1.0);
+    const double precision = GENERATE(0.0, 1.0); // head_precision: double, single
     ParameterSet p;
+    p.set(ParamId::headPrecision, precision);
     p.set(ParamId::snaresEngaged, 0.0);
     p.set(ParamId::airModel, 0.0);
     p.set(ParamId::gridCoarseness, quality);
@@ -137,7 +140,7 @@ TEST_CASE("the product's grids keep the low batter modes at the Bessel frequenci
     for (int i = 0; i < 6; ++i)
     {
         const double ideal = zeros[i] / zeros[0] * f01;
-        INFO("Quality " << quality << ", h " << drum.batter().grid().spacing() * 1e3 << " mm, mode " << i << ": "
+        INFO("Quality " << quality << (precision > 0.5 ? ", single" : ", double") << ", h " << drum.batter().grid().spacing() * 1e3 << " mm, mode " << i << ": "
                         << modes[(size_t) i] << " Hz vs " << ideal << " Hz");
         CHECK(modes[(size_t) i] == Approx(ideal).epsilon(0.005));
     }

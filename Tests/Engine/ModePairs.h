@@ -36,10 +36,10 @@ inline SweptVolumes sweptVolumes(const DrumConfig& cfg, int steps = 1 << 15)
     {
         drum.step();
         double b = 0.0, c = 0.0;
-        for (double w : drum.batter().displacement())
-            b += w;
-        for (double w : drum.carry().displacement())
-            c += w;
+        for (int i = 0; i < drum.batter().grid().numNodes(); ++i)
+            b += drum.batter().nowAt(i);
+        for (int i = 0; i < drum.carry().grid().numNodes(); ++i)
+            c += drum.carry().nowAt(i);
         v.batter.push_back(b);
         v.carry.push_back(c);
     }

@@ -153,6 +153,7 @@ struct GridShape
     CollisionScheme scheme;
     AirModel air;
     double airSpacing; // 0 without the air box
+    bool singleHeads;
     bool operator==(const GridShape&) const = default;
 };
 
@@ -160,7 +161,7 @@ GridShape shapeOf(const Drum& d)
 {
     return { d.batter().grid().numInterior(), d.carry().grid().numInterior(), d.snareWires().intervals(),
              d.snareContact().numPoints(), d.config().snares.scheme, d.config().cavity.model,
-             d.airBox().active() ? d.airBox().air().spacing() : 0.0 };
+             d.airBox().active() ? d.airBox().air().spacing() : 0.0, d.batter().singlePrecision() };
 }
 } // namespace
 
@@ -213,7 +214,8 @@ TEST_CASE("a change the schema says rebuilds the model changes the grids or the 
             const bool gridsDiffer = a.batterNodes != b.batterNodes || a.carryNodes != b.carryNodes
                                   || a.wireIntervals != b.wireIntervals || a.contactPoints != b.contactPoints
                                   || a.airSpacing != b.airSpacing;
-            changed = s.needs == ChangeNeeds::newGrid ? gridsDiffer : (a.scheme != b.scheme || a.air != b.air);
+            changed = s.needs == ChangeNeeds::newGrid ? gridsDiffer
+                                                      : (a.scheme != b.scheme || a.air != b.air || a.singleHeads != b.singleHeads);
             if (changed)
                 break;
         }

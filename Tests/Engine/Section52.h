@@ -59,7 +59,7 @@ inline SnareTimes section52(const DrumConfig& cfg)
         for (size_t j = 0; j < under.size(); ++j)
         {
             mean += wires.uNow[j];
-            carry += drum.carry().displacement()[(size_t) under[j]];
+            carry += drum.carry().nowAt(under[j]);
         }
         mean /= (double) under.size();
         carry /= (double) under.size();

@@ -203,7 +203,7 @@ TEST_CASE("each snare point's gap is its wire node's height above the head node 
             for (int l = 1; l < wires.intervals(); ++l)
             {
                 const int node = grid.nearestInterior(wires.nodeX(l), wires.wireY(i));
-                const double expected = wires.uNow[(size_t) (i * wires.nodesPerWire() + l)] - drum.carry().displacement()[(size_t) node];
+                const double expected = wires.uNow[(size_t) (i * wires.nodesPerWire() + l)] - drum.carry().nowAt(node);
                 const double gap = drum.snareContact().gapAt(i, l);
                 worst = std::max(worst, std::abs(gap - expected));
                 largest = std::max(largest, std::abs(expected));
