@@ -87,7 +87,7 @@ SnareContact::SnareContact(const SnareSpec& spec, SnareWires& wires, Membrane& c
     wireInterior = M - 1;
     for (auto* v : { &groupW0, &groupCc, &groupS, &groupW })
         v->assign(groupNode.size(), 0.0);
-    for (auto* v : { &gq, &alphaQ, &betaQ, &uFree, &dropped, &pointW0, &pointCc, &pointS, &pointW })
+    for (auto* v : { &gq, &alphaQ, &betaQ, &uFree, &dropped })
         v->assign(numPoints, 0.0);
     psiQ.assign(numPoints, 0.0);
     trialPsi = psiQ;
@@ -134,13 +134,16 @@ void SnareContact::eliminateEnds(int g, const Membrane& carry, const SnareWires&
 namespace
 {
 // The per-point coefficients of the quadratised solve for the Hertz exponent (beta = 1.5, so
-// psi = psiScale xi^(5/4) and psi' = gScale xi^(1/4)), for `count` points with their groups'
-// W0 and cc copied to them, branch-free so that it vectorises. xi* = u* - W0 is the prediction (no contact force); g is the tangent at
-// the midpoint while xi^{n-1} and xi* both touch, else the secant.
+// psi = psiScale xi^(5/4)), for `count` points whose groups' W0 and cc are W0[k] and cc[k] (one
+// member of a class: its points and its groups run in step), branch-free so that it
+// vectorises. xi* = u* - W0 is the prediction (no contact force); g is the secant of psi from
+// xi^{n-1} to xi*. While both touch, with x, y their fourth roots, it is
+// (y^5 - x^5) / (y^4 - x^4) = (x^4 + x^3 y + x^2 y^2 + x y^3 + y^4) / ((x + y)(x^2 + y^2)):
+// no difference of near values, down to the tangent (5/4) x when they meet.
 SNARESIM_WIDE_VECTOR_CLONES void hertzCoefficients(int count, const int* __restrict wireNode, const double* __restrict xiPrev,
                                                    const double* __restrict u, const double* __restrict psi,
                                                    const double* __restrict W0, const double* __restrict cc, double hs,
-                                                   double gScale, double psiScale, double gammaS, double* __restrict gq,
+                                                   double psiScale, double gammaS, double* __restrict gq,
                                                    double* __restrict alpha, double* __restrict beta, double* __restrict uFree)
 {
     for (int k = 0; k < count; ++k)
@@ -148,24 +151,29 @@ SNARESIM_WIDE_VECTOR_CLONES void hertzCoefficients(int count, const int* __restr
         const double a = xiPrev[k];
         const double us = u[wireNode[k]];
         const double b = us - W0[k];
-        const double ap = a > 0.0 ? a : 0.0, bp = b > 0.0 ? b : 0.0;
         const double span = b - a;
         // g in single precision: it may be any value without breaking the energy identity
         // (header), so its rounding only perturbs the force law, by about 1e-7.
-        const float af = (float) ap, bf = (float) bp, mf = (float) (0.5 * (ap + bp)), sf = (float) span;
-        const float secant = (bf * std::sqrt(std::sqrt(bf)) - af * std::sqrt(std::sqrt(af))) / (sf != 0.0f ? sf : 1.0f);
-        const double g = (a > 0.0) & (b > 0.0) ? gScale * (double) std::sqrt(std::sqrt(mf)) : psiScale * (double) secant;
+        const float af = a > 0.0 ? (float) a : 0.0f, bf = b > 0.0 ? (float) b : 0.0f;
+        const float x = std::sqrt(std::sqrt(af)), y = std::sqrt(std::sqrt(bf));
+        const float x2 = x * x, y2 = y * y;
+        const bool both = (x > 0.0f) & (y > 0.0f);
+        // at most one touching: (psi(b) - psi(a)) / (b - a), one of the two terms zero
+        const float num = both ? (x2 * x2 + x * y * (x2 + y2) + x2 * y2) + y2 * y2 : bf * y - af * x;
+        const float den = both ? (x + y) * (x2 + y2) : (span != 0.0 ? (float) span : 1.0f);
+        const double g = psiScale * (double) (num / den);
         const double B = 0.25 * g * g;
         const double d = 1.0 / (1.0 + gammaS * B);
         gq[k] = g;
-        alpha[k] = (g * psi[k] + B * (b - a)) * d;
+        alpha[k] = (g * psi[k] + B * span) * d;
         beta[k] = cc[k] * hs * B * d;
         uFree[k] = us;
     }
 }
 
-// Per point, with its group's S and W copied to it: the force f = alpha - beta S, the wire u = u* - gammaS f, the
-// gap xi^{n+1} = u - W and psi at n+1/2; `dropped` gets psi^2 where psi is reset.
+// Per point, its group's S and W at S[k] and W[k] (one member of a class): the force
+// f = alpha - beta S, the wire u = u* - gammaS f, the gap xi^{n+1} = u - W and psi at n+1/2;
+// `dropped` gets psi^2 where psi is reset.
 SNARESIM_WIDE_VECTOR_CLONES void finishPoints(int count, const double* __restrict alpha, const double* __restrict beta,
                                               const double* __restrict gq, const double* __restrict S,
                                               const double* __restrict W, double gammaS, const double* __restrict xiPrev,
@@ -269,23 +277,28 @@ SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wire
     // xi^{n+1} = xi* - gammaS f - cc h_s S, S = sum f over the group. Eliminating xi^{n+1}:
     // f = alpha - beta S with alpha = (A + B xi*) / (1 + gammaS B), beta = cc h_s B / (1 + gammaS B).
     const int n = (int) pointWireNode.size();
-    spreadToPoints(groupW0, pointW0);
-    spreadToPoints(groupCc, pointCc);
-    if (quarterPower)
-        hertzCoefficients(n, pointWireNode.data(), xiPrev.data(), u, psiQ.data(), pointW0.data(), pointCc.data(), hs, gScale,
-                          psiScale, gammaS, gq.data(), alphaQ.data(), betaQ.data(), uFree.data());
-    else
-        for (size_t t = 0; t < (size_t) n; ++t)
+    for (const SizeClass& c : classes)
+        for (int j = 0; j < c.size; ++j)
         {
-            const double us = u[pointWireNode[t]], a = xiPrev[t];
-            const double predicted = us - pointW0[t];
-            const double gp = psiSlope(a, predicted);
-            const double B = 0.25 * gp * gp;
-            const double d = 1.0 / (1.0 + gammaS * B);
-            gq[t] = gp;
-            alphaQ[t] = (gp * psiQ[t] + B * (predicted - a)) * d;
-            betaQ[t] = pointCc[t] * hs * B * d;
-            uFree[t] = us;
+            const int t0 = c.pointBegin + j * c.groupCount, g0 = c.groupBegin, count = c.groupCount;
+            if (quarterPower)
+                hertzCoefficients(count, pointWireNode.data() + t0, xiPrev.data() + t0, u, psiQ.data() + t0, groupW0.data() + g0,
+                                  groupCc.data() + g0, hs, psiScale, gammaS, gq.data() + t0, alphaQ.data() + t0,
+                                  betaQ.data() + t0, uFree.data() + t0);
+            else
+                for (int i = 0; i < count; ++i)
+                {
+                    const size_t t = (size_t) (t0 + i), gi = (size_t) (g0 + i);
+                    const double us = u[pointWireNode[t]], a = xiPrev[t];
+                    const double predicted = us - groupW0[gi];
+                    const double gp = psiSlope(a, predicted);
+                    const double B = 0.25 * gp * gp;
+                    const double d = 1.0 / (1.0 + gammaS * B);
+                    gq[t] = gp;
+                    alphaQ[t] = (gp * psiQ[t] + B * (predicted - a)) * d;
+                    betaQ[t] = groupCc[gi] * hs * B * d;
+                    uFree[t] = us;
+                }
         }
 
     // Per group: S = sum alpha / (1 + sum beta) and W; then the node and the ends (eq. 32a).
@@ -298,10 +311,14 @@ SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wire
             u[endWireNode[(size_t) groupEnds[(size_t) e]]] = groupW[(size_t) g];
 
     // Per point: the force, the wire, the gap and psi at n+1/2.
-    spreadToPoints(groupS, pointS);
-    spreadToPoints(groupW, pointW);
-    finishPoints(n, alphaQ.data(), betaQ.data(), gq.data(), pointS.data(), pointW.data(), gammaS, xiPrev.data(), xiNow.data(),
-                 uFree.data(), xiNext.data(), psiQ.data(), dropped.data());
+    for (const SizeClass& c : classes)
+        for (int j = 0; j < c.size; ++j)
+        {
+            const int t0 = c.pointBegin + j * c.groupCount, g0 = c.groupBegin;
+            finishPoints(c.groupCount, alphaQ.data() + t0, betaQ.data() + t0, gq.data() + t0, groupS.data() + g0,
+                         groupW.data() + g0, gammaS, xiPrev.data() + t0, xiNow.data() + t0, uFree.data() + t0,
+                         xiNext.data() + t0, psiQ.data() + t0, dropped.data() + t0);
+        }
     for (int t = 0; t < n; ++t)
         u[pointWireNode[(size_t) t]] = uFree[(size_t) t];
 
@@ -309,13 +326,6 @@ SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wire
     const double sumRemoved = summarise(n, xiNext.data(), dropped.data(), result.maxPenetration_m, result.contacts);
     lastCorrection = 0.5 * hs * sumRemoved;
     return result;
-}
-
-void SnareContact::spreadToPoints(const std::vector<double>& perGroup, std::vector<double>& perPoint) const
-{
-    for (const SizeClass& c : classes)
-        for (int j = 0; j < c.size; ++j)
-            std::copy_n(perGroup.data() + c.groupBegin, c.groupCount, perPoint.data() + c.pointBegin + j * c.groupCount);
 }
 
 SnareSolveResult SnareContact::stepNewton(Membrane& carry, SnareWires& wires)

@@ -13,7 +13,8 @@
 // Layout: the node groups are sorted into classes of equal size; a class of G groups of K
 // points stores its points member-major (member j of group i at j G + i), so that every
 // per-point and per-group loop of the quadratised solve runs over contiguous arrays and
-// vectorises, with one gather (the wire node) per point.
+// vectorises (member j's points beside the groups' own arrays), with one gather (the wire
+// node) per point.
 //
 // Two schemes for the collision term (SnareSpec::scheme):
 // - newton: the paper's eq. (30), f = (Phi(xi^{n+1}) - Phi(xi^{n-1})) / (xi^{n+1} - xi^{n-1}),
@@ -107,8 +108,9 @@ private:
     {
         return x > 0.0 ? psiScale * (quarterPower ? x * std::sqrt(std::sqrt(x)) : std::pow(x, halfExponent + 1.0)) : 0.0;
     }
-    // The slope g of psi from a = xi^{n-1} to b = xi*: the secant where a contact begins or ends,
-    // the tangent at the midpoint while both touch (equal to the secant to O((b - a)^2)).
+    // The slope g of psi from a = xi^{n-1} to b = xi* for an exponent other than 1.5 (that one:
+    // hertzCoefficients): the secant where a contact begins or ends, the tangent at the midpoint
+    // while both touch (equal to the secant to O((b - a)^2), without its cancellation).
     double psiSlope(double from, double to) const
     {
         if (from > 0.0 && to > 0.0)
@@ -127,8 +129,6 @@ private:
     bool solveGroupNewton(int m, double gammaS, double coupling, int& iterations);
     bool solveGroupReduced(int m, double gammaS, double coupling, int& iterations);
     double solveFallback(int m, double gammaS, double coupling);
-    // Copy a value per group to each of the group's points.
-    void spreadToPoints(const std::vector<double>& perGroup, std::vector<double>& perPoint) const;
 
     PowerLawPotential law;
     CollisionScheme method;
@@ -162,7 +162,6 @@ private:
     // energy psi's reset removed
     std::vector<double> groupW0, groupCc, groupS, groupW;
     std::vector<double> gq, alphaQ, betaQ, uFree, dropped;
-    std::vector<double> pointW0, pointCc, pointS, pointW; // W0, cc, S and W of each point's group
 
     SnareWires& snares;
     Membrane& head; // the carry head

@@ -30,11 +30,11 @@ DrumConfig productDrum(double quality, bool snares, HeadPrecision precision)
     return makeDrumConfig(p, 48000.0);
 }
 
-// The mix after one fortissimo strike at the schema's strike point.
-std::vector<double> strike(const DrumConfig& cfg, double seconds)
+// The mix after one fortissimo strike at the schema's strike point, its speed times `nudge`.
+std::vector<double> strike(const DrumConfig& cfg, double seconds, double nudge = 1.0)
 {
     Drum drum(cfg);
-    drum.strike(cfg.strikeSpeedMax_m_per_s, cfg.strikeRadius_frac, 0.0);
+    drum.strike(cfg.strikeSpeedMax_m_per_s * nudge, cfg.strikeRadius_frac, 0.0);
     std::vector<double> x((size_t) (seconds * cfg.sampleRate_Hz));
     for (auto& v : x)
         v = drum.step();
@@ -123,12 +123,62 @@ Features features(const std::vector<double>& x, double fs)
     return f;
 }
 
-bool close(const Features& a, const Features& b)
+// The features as numbers: centroid, four band shares, two falls.
+std::vector<double> values(const Features& f)
 {
-    bool ok = std::abs(a.centroid_Hz / b.centroid_Hz - 1.0) < 0.05;
-    for (int j = 0; j < 4; ++j)
-        ok = ok && std::abs(a.bands[j] - b.bands[j]) < 0.01;
-    return ok && std::abs(a.fall20_ms / b.fall20_ms - 1.0) < 0.03 && std::abs(a.fall40_ms / b.fall40_ms - 1.0) < 0.03;
+    return { f.centroid_Hz, f.bands[0], f.bands[1], f.bands[2], f.bands[3], f.fall20_ms, f.fall40_ms };
+}
+
+// The double-precision drum's own spread: strikes whose speeds differ in the 13th digit part
+// once the snares touch (chaos: round-off grows about 3 dB per ms), and their features spread
+// with them. `inside` holds a render to that spread, widened by the spread itself (five renders
+// see less than all of it) or at least 2 % (centroid, falls) and half a point (band shares).
+struct Spread
+{
+    std::vector<double> lo, hi;
+
+    explicit Spread(const std::vector<Features>& renders)
+    {
+        lo = hi = values(renders.front());
+        for (const auto& r : renders)
+        {
+            const auto v = values(r);
+            for (size_t i = 0; i < v.size(); ++i)
+            {
+                lo[i] = std::min(lo[i], v[i]);
+                hi[i] = std::max(hi[i], v[i]);
+            }
+        }
+    }
+    bool inside(const Features& f) const
+    {
+        const auto v = values(f);
+        bool ok = true;
+        for (size_t i = 0; i < v.size(); ++i)
+        {
+            const bool share = i >= 1 && i <= 4;
+            const double floor = share ? 0.005 : 0.02 * 0.5 * (lo[i] + hi[i]);
+            const double widen = std::max(hi[i] - lo[i], floor);
+            ok = ok && v[i] >= lo[i] - widen && v[i] <= hi[i] + widen;
+        }
+        return ok;
+    }
+    std::string describe() const
+    {
+        std::ostringstream s;
+        for (size_t i = 0; i < lo.size(); ++i)
+            s << (i ? ", " : "") << lo[i] << " .. " << hi[i];
+        return s.str();
+    }
+};
+
+Spread doubleSpread(double quality, double seconds, double fs)
+{
+    std::vector<Features> renders;
+    for (int i = 0; i < 5; ++i)
+        renders.push_back(
+            features(strike(productDrum(quality, true, HeadPrecision::double_precision), seconds, 1.0 + 1e-12 * i), fs));
+    return Spread(renders);
 }
 
 std::string describe(const Features& f)
@@ -157,21 +207,22 @@ TEST_CASE("single-precision heads play the double-precision drum to within 80 dB
 
 TEST_CASE("single-precision heads keep the snare drum's sound: centroid, band shares and decay", "[precision]")
 {
-    // With the snares the drum is chaotic: two double-precision engines that differ only in the
-    // order of their sums part after a few milliseconds (BENCHMARKS.md). The features do not:
-    // tail centroid within 5 %, band shares within 1 point, the falls by 20 and 40 dB within 3 %.
-    // The same comparison between Quality 1 and Quality 2 must fail, or it would not tell.
-    const auto fs = 48000.0;
+    // With the snares the drum is chaotic: renders cannot be compared sample by sample, and even
+    // the double-precision drum's features move when the strike's speed moves in its 13th digit.
+    // The single-precision drum's features (tail centroid, band shares, falls by 20 and 40 dB)
+    // must lie within that spread (Spread). Quality 1 must not lie within Quality 2's, or the
+    // test would not tell drums apart.
+    const double fs = 48000.0, seconds = 1.5;
     const double quality = GENERATE(1.0, 2.0);
-    const auto reference = features(strike(productDrum(quality, true, HeadPrecision::double_precision), 1.5), fs);
-    const auto single = features(strike(productDrum(quality, true, HeadPrecision::single_precision), 1.5), fs);
-    INFO("Quality " << quality << ": double " << describe(reference) << "; single " << describe(single));
-    CHECK(close(single, reference));
+    const Spread reference = doubleSpread(quality, seconds, fs);
+    const auto single = features(strike(productDrum(quality, true, HeadPrecision::single_precision), seconds), fs);
+    INFO("Quality " << quality << ": double " << reference.describe() << "; single " << describe(single));
+    CHECK(reference.inside(single));
     if (quality == 2.0)
     {
-        const auto finer = features(strike(productDrum(1.0, true, HeadPrecision::double_precision), 1.5), fs);
+        const auto finer = features(strike(productDrum(1.0, true, HeadPrecision::double_precision), seconds), fs);
         INFO("Quality 1, double: " << describe(finer));
-        CHECK_FALSE(close(finer, reference));
+        CHECK_FALSE(reference.inside(finer));
     }
 }
 
