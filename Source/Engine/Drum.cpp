@@ -12,10 +12,15 @@ namespace snaresim
 
 namespace
 {
-const DrumConfig& validated(const DrumConfig& c)
+// The config as the drum runs it: validated, and the heads in double precision in the air box
+// (its embedding updates them with the air in double, HeadEmbedding).
+DrumConfig validated(const DrumConfig& c)
 {
     c.validate();
-    return c;
+    DrumConfig run = c;
+    if (run.cavity.model == AirModel::airbox)
+        run.batter.precision = run.carry.precision = HeadPrecision::double_precision;
+    return run;
 }
 
 double reserveFor(const DrumConfig& c, const MembraneSpec& m)
@@ -178,7 +183,10 @@ void Drum::applyLive(const DrumConfig& next) noexcept
         batterHead.grid().makeDistribution(n.mics.topX_frac * R, n.mics.topY_frac * R, 0.0, topMic);
     if (n.mics.bottomX_frac != cfg.mics.bottomX_frac || n.mics.bottomY_frac != cfg.mics.bottomY_frac)
         carryHead.grid().makeDistribution(n.mics.bottomX_frac * R, n.mics.bottomY_frac * R, 0.0, bottomMic);
+    const HeadPrecision heads[2] = { cfg.batter.precision, cfg.carry.precision }; // the grids' own
     cfg = n;
+    cfg.batter.precision = heads[0];
+    cfg.carry.precision = heads[1];
     setSnaresEngaged(n.snares.engaged);
 }
 

@@ -45,9 +45,6 @@ void validateMembrane(const MembraneSpec& m, double k, double reserve)
 }
 void validateAirBox(const DrumConfig& c)
 {
-    for (const MembraneSpec* m : { &c.batter, &c.carry })
-        require(m->precision == HeadPrecision::double_precision,
-                "the air box embeds heads in double precision only (head precision 1 = single)", (double) m->precision);
     const DrumAirSpec& a = c.air;
     require(a.walls == AirWalls::absorbing || a.walls == AirWalls::reflecting, "air box walls must be absorbing or reflecting",
             (double) a.walls);

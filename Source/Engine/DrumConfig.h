@@ -34,7 +34,7 @@ struct MembraneSpec
     double gridTension_N_per_m = 0.0;
     double gridSigma1_m2_per_s = -1.0;
     double gridCoarseness = 1.0;        // h = coarseness * h_min(eq. 39); >= 1 (from the schema)
-    HeadPrecision precision = HeadPrecision::double_precision; // from the schema (double in the air box)
+    HeadPrecision precision = HeadPrecision::double_precision; // from the schema; the air box runs double
 };
 
 // A mallet: lumped mass with power-law contact, eq. (9)-(11).

@@ -59,6 +59,7 @@ inline MembraneSpec bandBatter(double sampleRate_Hz)
     s.gridTension_N_per_m = 0.0;
     s.gridSigma1_m2_per_s = -1.0;
     s.gridCoarseness = 1.0;
+    s.precision = HeadPrecision::double_precision; // embedded in the air box
     return s;
 }
 

@@ -197,13 +197,14 @@ TEST_CASE("json: --json prints one JSON object with the render statistics", "[re
     CHECK(number(json, "rms") == Approx(std::sqrt(sumSquares / 17640.0)).epsilon(1e-9));
 }
 
-TEST_CASE("lossless: --lossless --json reports an energy balance drift below 1e-10", "[renderer]")
+TEST_CASE("lossless: --lossless --json reports an energy balance drift below 1e-10 with double-precision heads", "[renderer]")
 {
     TempDir dir;
     const auto wav = dir.out() / "lossless.wav";
     const auto csv = dir.out() / "lossless.csv";
     const auto run = runRenderer({ "-o", wav.string(), "--hit", "0:127", "--hit", "0.05:100", "--seconds", "0.3",
-                                   "--sample-rate", "44100", "--lossless", "--json", "--energy-csv", csv.string() },
+                                   "--sample-rate", "44100", "--lossless", "--json", "--energy-csv", csv.string(),
+                                   "--set", "head_precision=double" },
                                  dir.root() / "capture");
     INFO("stdout: " << run.out << "\nstderr: " << run.err);
     REQUIRE(run.exitCode == 0);
@@ -244,6 +245,22 @@ TEST_CASE("lossless: --lossless --json reports an energy balance drift below 1e-
     CHECK(drift == Approx(deviation / largest).epsilon(1e-9));
     CHECK(number(json, "nonfinite_samples") == 0.0);
     CHECK(number(json, "peak") > 0.0);
+}
+
+TEST_CASE("lossless: the default single-precision heads hold the energy balance to float round-off", "[renderer]")
+{
+    // 2^-24 per step, a random walk over the 13 230 steps: 2^-24 sqrt(13230) = 6.9e-6.
+    TempDir dir;
+    const auto run = runRenderer({ "-o", (dir.out() / "lossless.wav").string(), "--hit", "0:127", "--hit", "0.05:100",
+                                   "--seconds", "0.3", "--sample-rate", "44100", "--lossless", "--json" },
+                                 dir.root() / "capture");
+    INFO("stdout: " << run.out << "\nstderr: " << run.err);
+    REQUIRE(run.exitCode == 0);
+    const auto json = parseJson(run.out);
+    REQUIRE(json.isObject());
+    const double drift = number(json, "energy_relative_drift_max");
+    CHECK(drift < std::ldexp(1.0, -24) * std::sqrt(13230.0));
+    CHECK(drift > 1.0e-10); // the heads do run in float
 }
 
 TEST_CASE("midi: --midi renders the note-ons of a Standard MIDI file, tempo map honoured", "[renderer]")
@@ -315,8 +332,9 @@ TEST_CASE("energy csv: --energy-csv writes the header and one row per sample", "
     const double rate = 44100.0;
     const long long length = 4410; // 0.1 s
 
+    // The heads in double precision: the balance below is then constant to double round-off.
     const auto run = runRenderer({ "-o", wav.string(), "--energy-csv", csv.string(), "--hit", "0.01:100",
-                                   "--seconds", "0.1", "--sample-rate", "44100" },
+                                   "--seconds", "0.1", "--sample-rate", "44100", "--set", "head_precision=double" },
                                  dir.root() / "capture");
     requireGoodWav(run, wav, rate, length);
     REQUIRE(fs::is_regular_file(csv));
