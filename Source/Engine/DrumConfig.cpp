@@ -231,7 +231,6 @@ DrumConfig mapParameters(const ParameterSet& p, double sampleRate_Hz) noexcept
     const double sigma0 = 3.0 * std::log(10.0) / dampingT60(p.get(ParamId::damping));
     const double sigma1 = p.get(ParamId::highDamping);
     const double coarseness = p.get(ParamId::gridCoarseness);
-    c.cavity.model = static_cast<AirModel>(std::lround(p.get(ParamId::airModel))); // none, cavity, airbox: the choices in order
 
     c.batter.tension_N_per_m = p.get(ParamId::batterTension);
     c.batter.sigma0_per_s = sigma0;
@@ -249,9 +248,7 @@ DrumConfig mapParameters(const ParameterSet& p, double sampleRate_Hz) noexcept
     {
         m->gridSigma1_m2_per_s = spec(ParamId::highDamping).maxValue;
         m->gridCoarseness = coarseness;
-        // the air box's embedding updates the heads in double (HeadEmbedding)
-        m->precision = p.get(ParamId::headPrecision) >= 0.5 && c.cavity.model != AirModel::airbox ? HeadPrecision::single_precision
-                                                                                                   : HeadPrecision::double_precision;
+        m->precision = p.get(ParamId::headPrecision) >= 0.5 ? HeadPrecision::single_precision : HeadPrecision::double_precision;
     }
     c.batter.gridTension_N_per_m = spec(ParamId::batterTension).maxValue;
     c.carry.gridTension_N_per_m = spec(ParamId::carryTension).maxValue;
@@ -264,6 +261,7 @@ DrumConfig mapParameters(const ParameterSet& p, double sampleRate_Hz) noexcept
     c.snares.scheme = p.get(ParamId::snareSolver) >= 0.5 ? CollisionScheme::newton : CollisionScheme::quadratised;
     c.cavity.shellDepth_m = p.get(ParamId::shellDepth);
     c.cavity.gridShellDepth_m = spec(ParamId::shellDepth).minValue;
+    c.cavity.model = static_cast<AirModel>(std::lround(p.get(ParamId::airModel))); // none, cavity, airbox: the choices in order
     c.air.sigma_m = p.get(ParamId::airLoss);
     // ParamId::offlineAirBox is the host's, not the drum's: the plug-in reads it to choose the air
     // model of its offline renders (it arrives here as the air model).

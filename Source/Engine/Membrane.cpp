@@ -73,6 +73,10 @@ void Membrane::setCoefficients(double tension, double s0, double s1)
     a1 = (lambda2 + s) / q;
     b0 = -(1.0 - sigma0 * k - 4.0 * s) / q;
     b1 = -s / q;
+    // the float state's increment form: w+ = w + r (w - w-) + cl L w + cs L (w - w-)
+    r = (float) ((1.0 - sigma0 * k) / q);
+    cl = (float) (lambda2 / q);
+    cs = (float) (s / q);
 }
 
 namespace
@@ -143,9 +147,8 @@ void Membrane::computeFree(double pressure)
     if (single)
     {
         // rows 1 .. n-2, whole: every neighbour read stays inside the padded grid
-        const double lambda2 = kk * T / (rho * h * h), s = 2.0 * sigma1 * k / (h * h);
-        sumNext = updateGridFloat(fNext.data() + n, fNow.data() + n, fPrev.data() + n, fMask.data() + n, n, n * (n - 2),
-                                  (float) ((1.0 - sigma0 * k) / q), (float) (lambda2 / q), (float) (s / q), (float) push);
+        sumNext = updateGridFloat(fNext.data() + n, fNow.data() + n, fPrev.data() + n, fMask.data() + n, n, n * (n - 2), r, cl,
+                                  cs, (float) push);
         return;
     }
     double sum = 0.0;

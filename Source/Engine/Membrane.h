@@ -159,6 +159,7 @@ private:
     double maxT, maxSigma1;
     double q = 1;
     double a0 = 0, a1 = 0, b0 = 0, b1 = 0; // stencil coefficients
+    float r = 0, cl = 0, cs = 0;            // the same as an increment, for the float state (computeFree)
     std::vector<int> rowBegin, rowEnd;      // columns holding interior nodes, per row
     double sumNext = 0.0;                   // sum(w^{n+1})
     const double* response = nullptr;       // per-node response to a force (setResponse), or 1

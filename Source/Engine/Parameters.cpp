@@ -78,7 +78,7 @@ constexpr std::array<ParameterSpec, kNumParameters> kSpecs {{
       "When the host renders offline (a bounce), the drum plays in the air box whatever the air model says; off: bounces play the air model. Read by the plug-in only: the renderer plays the air model",
       B, "off|on", "model" },
     { P::headPrecision, "head_precision", "Head arithmetic", "", 0.0, 1.0, 1.0, S::linear, N::newModel,
-      "The heads' state and update (eq. 22) in double precision, or in single: about 1.7 times as fast, with the energy identity held to float round-off (BENCHMARKS.md); the air box always runs them in double",
+      "The heads' state and update (eq. 22) in double precision, or in single: the heads a quarter to a third cheaper, the energy identity held to float round-off (BENCHMARKS.md); the air box always runs them in double",
       K, "double|single", "model" },
 }};
 

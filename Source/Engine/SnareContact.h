@@ -103,11 +103,9 @@ public:
 private:
     SnareSolveResult stepNewton(Membrane& carry, SnareWires& wires);
     SnareSolveResult stepQuadratised(Membrane& carry, SnareWires& wires);
-    // psi(xi) = sqrt(2 Phi(xi)) = sqrt(2 kappa / (beta + 1)) [xi]_+^((beta + 1) / 2)
-    double psiOf(double x) const
-    {
-        return x > 0.0 ? psiScale * (quarterPower ? x * std::sqrt(std::sqrt(x)) : std::pow(x, halfExponent + 1.0)) : 0.0;
-    }
+    // psi(xi) = sqrt(2 Phi(xi)) = sqrt(2 kappa / (beta + 1)) [xi]_+^((beta + 1) / 2), for an
+    // exponent other than 1.5 (that one: hertzCoefficients)
+    double psiOf(double x) const { return x > 0.0 ? psiScale * std::pow(x, halfExponent + 1.0) : 0.0; }
     // The slope g of psi from a = xi^{n-1} to b = xi* for an exponent other than 1.5 (that one:
     // hertzCoefficients): the secant where a contact begins or ends, the tangent at the midpoint
     // while both touch (equal to the secant to O((b - a)^2), without its cancellation).
@@ -116,7 +114,7 @@ private:
         if (from > 0.0 && to > 0.0)
         {
             const double mid = 0.5 * (from + to);
-            return gScale * (quarterPower ? std::sqrt(std::sqrt(mid)) : std::pow(mid, halfExponent));
+            return gScale * std::pow(mid, halfExponent);
         }
         if (from <= 0.0 && to <= 0.0)
             return 0.0;
@@ -136,7 +134,7 @@ private:
     double gScale = 0.0;        // sqrt(kappa (beta + 1) / 2)
     double psiScale = 0.0;      // sqrt(2 kappa / (beta + 1))
     double halfExponent = 0.25; // (beta - 1) / 2
-    bool quarterPower = true;   // beta = 1.5: g = gScale xi^(1/4)
+    bool quarterPower = true;   // beta = 1.5: hertzCoefficients
     double lastCorrection = 0.0;
     // contact points (in class layout, above): wire-array index of the node, head node
     std::vector<int> pointWireNode, pointHeadNode;

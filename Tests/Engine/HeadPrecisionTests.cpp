@@ -226,23 +226,23 @@ TEST_CASE("a lossless drum with single-precision heads holds its energy to float
 TEST_CASE("the air box keeps its heads in double precision", "[precision][airbox]")
 {
     // Its embedding updates the heads with the air in double (HeadEmbedding): asked for single
-    // heads, a drum in the air box runs double ones, and says so.
+    // heads, a drum in the air box runs double ones, and its config says so; with the cavity it
+    // runs what it is asked for.
     ParameterSet p;
     p.set(ParamId::headPrecision, 1.0);
-    p.set(ParamId::airModel, (double) AirModel::airbox);
-    const DrumConfig boxed = makeDrumConfig(p, 48000.0);
-    CHECK(boxed.batter.precision == HeadPrecision::double_precision);
-    CHECK(boxed.carry.precision == HeadPrecision::double_precision);
     p.set(ParamId::airModel, (double) AirModel::cavity);
     const DrumConfig cavity = makeDrumConfig(p, 48000.0);
     CHECK(cavity.batter.precision == HeadPrecision::single_precision);
+    CHECK(Drum(cavity).batter().singlePrecision());
     CHECK(Drum(cavity).carry().singlePrecision());
 
-    DrumConfig asked = cavity;
-    asked.cavity.model = AirModel::airbox;
+    p.set(ParamId::airModel, (double) AirModel::airbox);
+    DrumConfig asked = makeDrumConfig(p, 48000.0);
+    CHECK(asked.carry.precision == HeadPrecision::single_precision); // the parameter as set
     asked.air.size_m = { 0.0, 0.0, 0.0 }; // the drum plus its margins: quick to build
     const Drum drum(asked);
     CHECK_FALSE(drum.batter().singlePrecision());
     CHECK_FALSE(drum.carry().singlePrecision());
+    CHECK(drum.config().batter.precision == HeadPrecision::double_precision);
     CHECK(drum.config().carry.precision == HeadPrecision::double_precision);
 }
