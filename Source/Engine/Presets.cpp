@@ -1,44 +1,58 @@
 #include "Presets.h"
 
+#include "PresetFile.h"
+#include "SnareSimPresetFiles.h" // Resources/Presets, embedded (juce_add_binary_data: plain data)
+
 #include <algorithm>
-#include <array>
 #include <cctype>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 namespace snaresim
 {
 
 namespace
 {
-using P = ParamId;
-using V = std::pair<ParamId, double>;
+struct FactoryPresets
+{
+    std::vector<PresetFile> files;
+    std::vector<Preset> presets;
+};
 
-constexpr std::array<V, 0> kStudio {};
-constexpr std::array<V, 4> kTightFunk { { { P::batterTension, 4800.0 }, { P::snareTension, 55.0 }, { P::damping, 45.0 },
-                                         { P::malletStiffness, 3.0e8 } } };
-constexpr std::array<V, 6> kFatRock { { { P::batterTension, 1800.0 }, { P::carryTension, 1600.0 }, { P::snareTension, 22.0 },
-                                       { P::damping, 15.0 }, { P::malletMass, 0.04 }, { P::shellDepth, 0.165 } } };
-constexpr std::array<V, 6> kPiccolo { { { P::batterTension, 5600.0 }, { P::carryTension, 4200.0 }, { P::shellDepth, 0.076 },
-                                       { P::snareTension, 45.0 }, { P::damping, 30.0 }, { P::malletMass, 0.02 } } };
-constexpr std::array<V, 2> kSnaresOff { { { P::snaresEngaged, 0.0 }, { P::damping, 20.0 } } };
-constexpr std::array<V, 5> kLooseVintage { { { P::batterTension, 1500.0 }, { P::carryTension, 1200.0 }, { P::snareTension, 14.0 },
-                                            { P::damping, 8.0 }, { P::highDamping, 2.0e-3 } } };
-constexpr std::array<V, 3> kMuffledDry { { { P::damping, 85.0 }, { P::highDamping, 2.5e-3 }, { P::snareTension, 40.0 } } };
-constexpr std::array<V, 6> kMarching { { { P::batterTension, 6000.0 }, { P::carryTension, 5000.0 }, { P::snareTension, 90.0 },
-                                        { P::malletMass, 0.05 }, { P::malletStiffness, 1.0e9 }, { P::damping, 20.0 } } };
-constexpr std::array<V, 4> kSoftMallet { { { P::malletExponent, 2.5 }, { P::malletStiffness, 3.0e6 },
-                                          { P::malletContactRadius, 0.015 }, { P::malletMass, 0.04 } } };
-
-constexpr std::array<Preset, 9> kPresets { {
-    { "Studio Default", kStudio },
-    { "Tight Funk", kTightFunk },
-    { "Fat Rock", kFatRock },
-    { "Piccolo", kPiccolo },
-    { "Snares Off", kSnaresOff },
-    { "Loose Vintage", kLooseVintage },
-    { "Muffled Dry", kMuffledDry },
-    { "Marching", kMarching },
-    { "Soft Mallet", kSoftMallet },
-} };
+// The embedded files in the order of their file names ("01-...", "02-..."): the hosts' program
+// numbers. Read once; a file that does not read is a build defect, so it stops the program.
+const FactoryPresets& factory()
+{
+    static const FactoryPresets all = [] {
+        std::vector<std::pair<std::string, std::string>> sources; // file name, text
+        for (int i = 0; i < SnareSimPresetFiles::namedResourceListSize; ++i)
+        {
+            const char* resource = SnareSimPresetFiles::namedResourceList[i];
+            int size = 0;
+            const char* data = SnareSimPresetFiles::getNamedResource(resource, size);
+            sources.emplace_back(SnareSimPresetFiles::getNamedResourceOriginalFilename(resource), std::string(data, (size_t) size));
+        }
+        std::sort(sources.begin(), sources.end());
+        FactoryPresets f;
+        f.files.reserve(sources.size());
+        for (const auto& [file, text] : sources)
+        {
+            try
+            {
+                f.files.push_back(parsePresetFile(text));
+            }
+            catch (const PresetFileError& e)
+            {
+                throw std::logic_error("factory preset " + file + ": " + e.what());
+            }
+        }
+        for (const auto& p : f.files)
+            f.presets.push_back({ p.name, p.values });
+        return f;
+    }();
+    return all;
+}
 
 bool equalNoCase(std::string_view a, std::string_view b)
 {
@@ -49,11 +63,11 @@ bool equalNoCase(std::string_view a, std::string_view b)
 }
 } // namespace
 
-std::span<const Preset> factoryPresets() { return kPresets; }
+std::span<const Preset> factoryPresets() { return factory().presets; }
 
 bool applyPreset(std::string_view name, ParameterSet& params)
 {
-    for (const auto& p : kPresets)
+    for (const auto& p : factoryPresets())
     {
         if (! equalNoCase(p.name, name))
             continue;

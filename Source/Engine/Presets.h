@@ -1,5 +1,6 @@
 #pragma once
-// Named factory presets: each is a set of parameter values over the defaults.
+// Named factory presets: each is a set of parameter values over the defaults, read from the
+// preset files in Resources/Presets (PresetFile.h), embedded in the engine at build time.
 
 #include "Parameters.h"
 
@@ -16,6 +17,8 @@ struct Preset
     std::span<const std::pair<ParamId, double>> values; // the rest stay at their defaults
 };
 
+// In the files' order (their names' numbers): the hosts' program numbers. The first call reads
+// the embedded files (allocates): make it off the audio thread.
 std::span<const Preset> factoryPresets();
 
 // Resets params to the defaults and applies the named preset (case-insensitive).

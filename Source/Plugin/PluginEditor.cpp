@@ -1,5 +1,8 @@
 #include "PluginEditor.h"
 
+#include "PresetFile.h"
+#include "PresetFileActions.h"
+
 #include "Articulations.h"
 #include "PluginProcessor.h"
 
@@ -119,6 +122,19 @@ SnareSimAudioProcessorEditor::SnareSimAudioProcessorEditor (SnareSimAudioProcess
     addAndMakeVisible (presetBox);
     refreshPresetList();
 
+    // Preset files (.snarepreset), the format of the factory presets and of snaresim-render --preset FILE.
+    presetFileButton.setTooltip ("Load a preset file (.snarepreset: sets every parameter, the defaults for those it does not list), "
+                                 "or save the parameters as one (snaresim-render --preset FILE reads it too).");
+    presetFileButton.setTitle ("Preset file");
+    presetFileButton.onClick = [this]
+    {
+        juce::PopupMenu menu;
+        menu.addItem ("Load preset file...", [this] { choosePresetFile (false); });
+        menu.addItem ("Save preset file...", [this] { choosePresetFile (true); });
+        menu.showMenuAsync (juce::PopupMenu::Options().withTargetComponent (&presetFileButton));
+    };
+    addAndMakeVisible (presetFileButton);
+
     // Parameters: the "main" group as large knobs, every other group as rows.
     panels = makeParameterPanels (processor.getValueTreeState(), look, { "main" });
     auto mainIt = std::find_if (panels.begin(), panels.end(), [] (const auto& panel) { return panel->getGroupKey() == "main"; });
@@ -158,6 +174,27 @@ SnareSimAudioProcessorEditor::~SnareSimAudioProcessorEditor()
 }
 
 //==============================================================================
+void SnareSimAudioProcessorEditor::choosePresetFile (bool save)
+{
+    const auto folder = juce::File::getSpecialLocation (juce::File::userDocumentsDirectory);
+    const juce::String pattern = "*" + juce::String (std::string (snaresim::kPresetFileExtension));
+    presetChooser = std::make_unique<juce::FileChooser> (save ? "Save preset file" : "Load preset file", folder, pattern);
+    const int flags = save ? juce::FileBrowserComponent::saveMode | juce::FileBrowserComponent::warnAboutOverwriting
+                           : juce::FileBrowserComponent::openMode | juce::FileBrowserComponent::canSelectFiles;
+    presetChooser->launchAsync (flags | juce::FileBrowserComponent::canSelectFiles, [this, save] (const juce::FileChooser& chooser)
+    {
+        auto file = chooser.getResult();
+        if (file == juce::File())
+            return;
+        if (save && ! file.hasFileExtension (juce::String (std::string (snaresim::kPresetFileExtension))))
+            file = file.withFileExtension (juce::String (std::string (snaresim::kPresetFileExtension)));
+        const auto error = save ? snaresim::ui::savePresetFile (processor, file) : snaresim::ui::loadPresetFile (processor, file);
+        if (error.isNotEmpty())
+            juce::AlertWindow::showMessageBoxAsync (juce::MessageBoxIconType::WarningIcon,
+                                                    save ? "Preset not saved" : "Preset not loaded", error);
+    });
+}
+
 void SnareSimAudioProcessorEditor::refreshPresetList()
 {
     presetBox.clear (juce::dontSendNotification);
@@ -245,7 +282,9 @@ void SnareSimAudioProcessorEditor::resized()
         presetLabel.setFont (look.font (13.0f));
         presetLabel.setBounds (header.removeFromLeft (look.pxi (52.0f)).withSizeKeepingCentre (look.pxi (52.0f), controlH));
         header.removeFromLeft (look.pxi (8.0f));
-        presetBox.setBounds (header.removeFromLeft (look.pxi (210.0f)).withSizeKeepingCentre (look.pxi (210.0f), controlH));
+        presetBox.setBounds (header.removeFromLeft (look.pxi (176.0f)).withSizeKeepingCentre (look.pxi (176.0f), controlH));
+        header.removeFromLeft (look.pxi (6.0f));
+        presetFileButton.setBounds (header.removeFromLeft (look.pxi (44.0f)).withSizeKeepingCentre (look.pxi (44.0f), controlH));
 
         const int readoutH = look.pxi (34.0f);
         for (auto* readout : { &newtonReadout, &resetsReadout, &fallbacksReadout })

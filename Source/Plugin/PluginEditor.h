@@ -48,6 +48,7 @@ private:
     void timerCallback() override;
     void layoutParameterPanels (juce::Rectangle<int> area);
     void refreshPresetList();
+    void choosePresetFile (bool save);
 
     SnareSimAudioProcessor& processor;
 
@@ -58,6 +59,8 @@ private:
 
     juce::Label presetLabel;
     juce::ComboBox presetBox;
+    juce::TextButton presetFileButton { "File" };      // Load / Save a preset file
+    std::unique_ptr<juce::FileChooser> presetChooser;  // the open load / save dialog
 
     std::vector<std::unique_ptr<snaresim::ui::ParameterPanel>> panels;  // panels[0]: the large knobs
     snaresim::ui::ParameterPanel* mainPanel = nullptr;

@@ -333,7 +333,11 @@ void SnareSimAudioProcessor::applyProgram (int index)
     snaresim::ParameterSet values;
     for (const auto& [id, value] : presets[(size_t) index].values)
         values.setClamped (id, value);
+    applyParameters (values);
+}
 
+void SnareSimAudioProcessor::applyParameters (const snaresim::ParameterSet& values)
+{
     for (const auto& spec : snaresim::parameterSpecs())
     {
         if (auto* p = apvts.getParameter (juce::String (std::string (spec.key))))
@@ -348,7 +352,7 @@ void SnareSimAudioProcessor::applyProgram (int index)
         }
     }
 
-    // A new grid, if the program needs one, is built now: the next block plays it.
+    // A new grid, if the values need one, is built now: the next block plays it.
     player.buildNowIfNeeded();
 }
 

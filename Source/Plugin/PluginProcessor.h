@@ -90,6 +90,14 @@ public:
     // Thread-safe; never waits for a measurement; not for the audio thread.
     snaresim::ParameterSet currentParameters() const;
 
+    // The parameters as the host holds them (clamped into range; the air model as chosen, not
+    // as it plays). Any thread but the audio thread.
+    snaresim::ParameterSet parameterValues() const { return hostParameters(); }
+
+    // Message thread: sets every parameter to `values` (as a host's automation would, one
+    // gesture each) and builds the new model now if it needs one. Programs and preset files.
+    void applyParameters (const snaresim::ParameterSet& values);
+
     // True when the model playing now could not be built from the parameters and fell back
     // to the default parameter set.
     bool usedFallbackParameters() const noexcept { return player.usedFallbackParameters(); }

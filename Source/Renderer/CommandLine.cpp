@@ -616,7 +616,8 @@ Output:
                         (default: a short human-readable summary on stdout)
 
 Model:
-  --preset NAME         start from a factory preset instead of the defaults
+  --preset NAME|FILE    start from a factory preset, or a preset file (a path ending in
+                        .snarepreset), instead of the defaults
   --model cavity|none|airbox
                         the air: cavity (the enclosed air couples the heads; the
                         default), none (heads uncoupled) or airbox (the paper's full

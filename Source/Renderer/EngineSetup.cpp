@@ -1,7 +1,12 @@
 #include "EngineSetup.h"
 
 #include "Errors.h"
+#include "PresetFile.h"
 #include "Presets.h"
+
+#include <cctype>
+#include <filesystem>
+#include <fstream>
 
 #include <algorithm>
 #include <cmath>
@@ -13,16 +18,52 @@
 namespace snaresim::render
 {
 
+bool isPresetFile(std::string_view text)
+{
+    const auto ext = kPresetFileExtension;
+    if (text.size() >= ext.size()
+        && std::equal(ext.begin(), ext.end(), text.end() - (std::ptrdiff_t) ext.size(),
+                      [](char a, char b) { return std::tolower((unsigned char) a) == std::tolower((unsigned char) b); }))
+        return true;
+    return text.find('/') != std::string_view::npos; // no factory preset's name holds one
+}
+
+ParameterSet readPresetFile(const std::filesystem::path& path)
+{
+    const auto where = "--preset " + path.string() + ": ";
+    std::error_code ec;
+    if (! std::filesystem::is_regular_file(path, ec))
+        throw UserError(where + "no such preset file");
+    const auto size = std::filesystem::file_size(path, ec);
+    if (ec || size > 64 * 1024)
+        throw UserError(where + (ec ? "cannot read it" : "not a preset file: larger than 64 KiB"));
+    std::ifstream in(path, std::ios::binary);
+    std::string text((std::size_t) size, '\0');
+    if (! in || ! in.read(text.data(), (std::streamsize) size))
+        throw UserError(where + "cannot read it");
+    try
+    {
+        return parametersOf(parsePresetFile(text));
+    }
+    catch (const PresetFileError& e)
+    {
+        throw UserError(where + e.what());
+    }
+}
+
 ParameterSet makeParameters(const RenderJob& job)
 {
     ParameterSet params;
 
-    if (job.preset && ! applyPreset(*job.preset, params))
+    if (job.preset && isPresetFile(*job.preset))
+        params = readPresetFile(*job.preset);
+    else if (job.preset && ! applyPreset(*job.preset, params))
     {
         std::string names;
         for (const auto& preset : factoryPresets())
             names += (names.empty() ? "" : ", ") + std::string(preset.name);
-        throw UserError("--preset: unknown preset '" + *job.preset + "' (available: " + names + ")");
+        throw UserError("--preset: unknown preset '" + *job.preset + "' (available: " + names
+                        + "; or a preset file: a path ending in " + std::string(kPresetFileExtension) + ")");
     }
 
     // --model after the preset, before --set (a later --set air_model=... wins).

@@ -10,12 +10,21 @@
 #include "DrumConfig.h"
 #include "Parameters.h"
 
+#include <filesystem>
 #include <memory>
+#include <string_view>
 
 namespace snaresim::render
 {
 
 ParameterSet makeParameters(const RenderJob& job);
+
+// --preset TEXT names a preset file (PresetFile.h) rather than a factory preset: it ends in
+// .snarepreset, or it holds a '/' (a path).
+bool isPresetFile(std::string_view text);
+// The defaults with a preset file's values; a UserError naming the file (and the line) when it
+// cannot be read or is not a valid preset file.
+ParameterSet readPresetFile(const std::filesystem::path& path);
 
 // makeDrumConfig(params, job.sampleRate_Hz), made lossless for --lossless.
 DrumConfig makeConfig(const RenderJob& job, const ParameterSet& params);

@@ -8,6 +8,7 @@
 #include "Drum.h"
 #include "PluginState.h"
 #include "Presets.h"
+#include "PresetFileActions.h"
 
 #include <atomic>
 #include <chrono>
@@ -306,6 +307,61 @@ TEST_CASE ("the factory presets are the programs", "[processor][programs]")
 
     proc.setCurrentProgram (42);    // ignored
     CHECK (proc.getCurrentProgram() == 8);
+}
+
+TEST_CASE ("preset files load into every parameter, save what the host holds, and bad files change nothing", "[processor][programs]")
+{
+    SnareSimAudioProcessor proc;
+    const auto dir = juce::File::createTempFile ("snaresim-presets");
+    REQUIRE (dir.createDirectory());
+
+    // a file with a few values: those are set, every other parameter returns to its default
+    for (auto* p : proc.getParameters())
+        p->setValueNotifyingHost (0.77f);
+    const auto file = dir.getChildFile ("mine.snarepreset");
+    REQUIRE (file.replaceWithText ("name = Mine\nbatter_tension = 4200 N/m\nsnares_engaged = off\nshell_depth = 100 mm\n"));
+    CHECK (snaresim::ui::loadPresetFile (proc, file).isEmpty());
+    snaresim::ParameterSet expected;
+    expected.set (ParamId::batterTension, 4200.0);
+    expected.set (ParamId::snaresEngaged, 0.0);
+    expected.set (ParamId::shellDepth, 0.1);
+    const auto loaded = proc.parameterValues();
+    for (const auto& spec : snaresim::parameterSpecs())
+    {
+        INFO ("parameter " << spec.key);
+        CHECK (loaded.get (spec.id) == Approx (expected.get (spec.id)).epsilon (1e-5).margin (1e-9));
+    }
+
+    // saved and loaded back into another processor: the same values
+    const auto saved = dir.getChildFile ("saved.snarepreset");
+    proc.setCurrentProgram (3);
+    CHECK (snaresim::ui::savePresetFile (proc, saved).isEmpty());
+    CHECK (saved.loadFileAsString().contains ("name = saved"));
+    SnareSimAudioProcessor other;
+    CHECK (snaresim::ui::loadPresetFile (other, saved).isEmpty());
+    for (const auto& spec : snaresim::parameterSpecs())
+    {
+        INFO ("parameter " << spec.key);
+        CHECK (other.parameterValues().get (spec.id) == proc.parameterValues().get (spec.id));
+    }
+
+    // bad files: an error naming the file (and the line), no parameter changed
+    const auto before = other.parameterValues();
+    const auto bad = dir.getChildFile ("bad.snarepreset");
+    REQUIRE (bad.replaceWithText ("name = Bad\ndamping = 10\nbatter_tension = 1e9\n"));
+    const auto error = snaresim::ui::loadPresetFile (other, bad);
+    CHECK (error.contains ("bad.snarepreset"));
+    CHECK (error.contains ("line 3"));
+    CHECK (snaresim::ui::loadPresetFile (other, dir.getChildFile ("missing.snarepreset")).isNotEmpty());
+    const auto binary = dir.getChildFile ("binary.snarepreset");
+    REQUIRE (binary.replaceWithData ("RIFF\0\0\0\0WAVE", 12));
+    CHECK (snaresim::ui::loadPresetFile (other, binary).isNotEmpty());
+    for (const auto& spec : snaresim::parameterSpecs())
+        CHECK (other.parameterValues().get (spec.id) == before.get (spec.id));
+
+    // an unwritable place: an error, nothing written
+    CHECK (snaresim::ui::savePresetFile (proc, dir.getChildFile ("no/such/folder/x.snarepreset")).isNotEmpty());
+    dir.deleteRecursively();
 }
 
 TEST_CASE ("a version-1 state loads with its values mapped", "[processor][state]")

@@ -5,6 +5,9 @@
 
 #include "RendererTestSupport.h"
 
+#include "PresetFile.h"
+#include "Presets.h"
+
 #include "Drum.h"
 #include "DrumConfig.h"
 #include "EnergyPlot.h"
@@ -14,6 +17,7 @@
 #include <catch2/catch.hpp>
 
 #include <charconv>
+#include <fstream>
 #include <cmath>
 #include <functional>
 #include <numbers>
@@ -565,4 +569,31 @@ TEST_CASE("plots: --snare-plot writes a PNG of the snare wires", "[renderer]")
         CHECK(top->x <= area.getX() + 2.0f);
         CHECK(rightmostInRow(image, area, top->y, isBlueCurve) >= area.getRight() - 3.0f);
     }
+}
+
+TEST_CASE("presets: --preset FILE plays as the factory preset its file copies, and --set applies after it", "[renderer]")
+{
+    TempDir dir;
+    fs::create_directories(dir.in());
+    const auto file = dir.in() / "funk copy.snarepreset";
+    {
+        snaresim::ParameterSet funk;
+        REQUIRE(snaresim::applyPreset("Tight Funk", funk));
+        std::ofstream(file) << snaresim::formatPresetFile("Funk copy", funk);
+    }
+    renderOk(dir, dir.out() / "named.wav", with(kQuick, { "--preset", "Tight Funk" }));
+    renderOk(dir, dir.out() / "file.wav", with(kQuick, { "--preset", file.string() }));
+    renderOk(dir, dir.out() / "default.wav", kQuick);
+    const auto named = readWav(dir.out() / "named.wav");
+    const auto fromFile = readWav(dir.out() / "file.wav");
+    const auto defaults = readWav(dir.out() / "default.wav");
+    REQUIRE(named.opened);
+    REQUIRE(fromFile.opened);
+    REQUIRE(defaults.opened);
+    CHECK(named.samples == fromFile.samples);
+    CHECK(clearlyDifferent(named.samples, defaults.samples));
+
+    // --set still applies after the file
+    renderOk(dir, dir.out() / "file-set.wav", with(kQuick, { "--preset", file.string(), "--set", "batter_tension=3050" }));
+    CHECK(clearlyDifferent(readWav(dir.out() / "file-set.wav").samples, named.samples));
 }

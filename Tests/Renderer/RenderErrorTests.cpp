@@ -100,6 +100,21 @@ TEST_CASE("bad input: unknown parameters, out-of-range values, unknown presets",
     requireBadInput(dir, { "--hit", "0:100", "--set", "mallet_mass" }, "mallet_mass");
     requireBadInput(dir, { "--hit", "0:100", "--preset", "No Such Preset" }, "No Such Preset");
 
+    // preset files: missing, not a preset file, a bad line (named with its line number)
+    fs::create_directories(dir.in());
+    const auto write = [&](const std::string& name, const std::string& text) {
+        std::ofstream(dir.in() / name, std::ios::binary) << text;
+        return (dir.in() / name).string();
+    };
+    requireBadInput(dir, { "--hit", "0:100", "--preset", (dir.in() / "missing.snarepreset").string() }, "no such preset file");
+    requireBadInput(dir, { "--hit", "0:100", "--preset", write("empty.snarepreset", "") }, "no 'name");
+    requireBadInput(dir, { "--hit", "0:100", "--preset", write("wav.snarepreset", std::string("RIFF\0\0\0\0WAVE", 12)) }, "binary");
+    requireBadInput(dir, { "--hit", "0:100", "--preset", write("bad.snarepreset", "name = Bad\ndamping = 20\nbatter_tension = 90000\n") },
+                    "line 3");
+    requireBadInput(dir, { "--hit", "0:100", "--preset", write("unknown.snarepreset", "name = U\nloudness = 11\n") },
+                    "unknown parameter 'loudness'");
+    requireBadInput(dir, { "--hit", "0:100", "--preset", (dir.in()).string() + "/" }, "no such preset file");
+
     for (const auto& spec : snaresim::parameterSpecs())
     {
         const double span = spec.maxValue - spec.minValue;
