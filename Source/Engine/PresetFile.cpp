@@ -4,6 +4,7 @@
 
 #include <array>
 #include <charconv>
+#include <fstream>
 #include <stdexcept>
 
 namespace snaresim
@@ -106,6 +107,23 @@ PresetFile parsePresetFile(std::string_view text)
     if (! named)
         throw PresetFileError("not a preset file: no 'name = ...' line");
     return preset;
+}
+
+PresetFile readPresetFile(const std::filesystem::path& path)
+{
+    std::error_code ec;
+    if (! std::filesystem::is_regular_file(path, ec))
+        throw PresetFileError("no such preset file");
+    const auto size = std::filesystem::file_size(path, ec);
+    if (ec)
+        throw PresetFileError("cannot read it");
+    if (size > kMaxPresetBytes)
+        throw PresetFileError("not a preset file: larger than 64 KiB");
+    std::ifstream in(path, std::ios::binary);
+    std::string text((std::size_t) size, '\0');
+    if (! in || ! in.read(text.data(), (std::streamsize) size))
+        throw PresetFileError("cannot read it");
+    return parsePresetFile(text);
 }
 
 ParameterSet parametersOf(const PresetFile& preset)

@@ -12,6 +12,7 @@
 
 #include "Parameters.h"
 
+#include <filesystem>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -39,6 +40,10 @@ struct PresetFileError : std::invalid_argument
 // unknown key, a key given twice, a value that cannot be read or is outside the parameter's
 // range, no name, or text that is not a preset file at all (binary, over 64 KiB).
 PresetFile parsePresetFile(std::string_view text);
+
+// Reads a preset file from disk, then as parsePresetFile. Throws PresetFileError for a path that
+// is not a regular file ("no such preset file"), one over 64 KiB or one that cannot be read.
+PresetFile readPresetFile(const std::filesystem::path& path);
 
 // The defaults with the file's values set.
 ParameterSet parametersOf(const PresetFile& preset);

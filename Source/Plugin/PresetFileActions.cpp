@@ -3,27 +3,20 @@
 #include "PluginProcessor.h"
 #include "PresetFile.h"
 
+#include <filesystem>
+
 namespace snaresim::ui
 {
 
 juce::String loadPresetFile (SnareSimAudioProcessor& processor, const juce::File& file)
 {
-    const auto where = file.getFileName() + ": ";
-    if (! file.existsAsFile())
-        return where + "no such file";
-    if (file.getSize() > 64 * 1024)
-        return where + "not a preset file: larger than 64 KiB";
-    juce::MemoryBlock data;
-    if (! file.loadFileAsData (data))
-        return where + "cannot read it";
     try
     {
-        const auto preset = parsePresetFile (std::string_view (static_cast<const char*> (data.getData()), data.getSize()));
-        processor.applyParameters (parametersOf (preset));
+        processor.applyParameters (parametersOf (readPresetFile (std::filesystem::path (file.getFullPathName().toStdString()))));
     }
     catch (const PresetFileError& e)
     {
-        return where + e.what();
+        return file.getFileName() + ": " + e.what();
     }
     return {};
 }

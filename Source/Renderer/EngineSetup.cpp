@@ -6,7 +6,6 @@
 
 #include <cctype>
 #include <filesystem>
-#include <fstream>
 
 #include <algorithm>
 #include <cmath>
@@ -30,24 +29,13 @@ bool isPresetFile(std::string_view text)
 
 ParameterSet readPresetFile(const std::filesystem::path& path)
 {
-    const auto where = "--preset " + path.string() + ": ";
-    std::error_code ec;
-    if (! std::filesystem::is_regular_file(path, ec))
-        throw UserError(where + "no such preset file");
-    const auto size = std::filesystem::file_size(path, ec);
-    if (ec || size > 64 * 1024)
-        throw UserError(where + (ec ? "cannot read it" : "not a preset file: larger than 64 KiB"));
-    std::ifstream in(path, std::ios::binary);
-    std::string text((std::size_t) size, '\0');
-    if (! in || ! in.read(text.data(), (std::streamsize) size))
-        throw UserError(where + "cannot read it");
     try
     {
-        return parametersOf(parsePresetFile(text));
+        return parametersOf(snaresim::readPresetFile(path));
     }
     catch (const PresetFileError& e)
     {
-        throw UserError(where + e.what());
+        throw UserError("--preset " + path.string() + ": " + e.what());
     }
 }
 
