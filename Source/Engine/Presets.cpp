@@ -67,15 +67,12 @@ std::span<const Preset> factoryPresets() { return factory().presets; }
 
 bool applyPreset(std::string_view name, ParameterSet& params)
 {
-    for (const auto& p : factoryPresets())
-    {
-        if (! equalNoCase(p.name, name))
-            continue;
-        params = ParameterSet {};
-        for (const auto& [id, value] : p.values)
-            params.set(id, value);
-        return true;
-    }
+    for (const auto& file : factory().files)
+        if (equalNoCase(file.name, name))
+        {
+            params = parametersOf(file);
+            return true;
+        }
     return false;
 }
 

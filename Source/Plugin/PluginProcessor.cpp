@@ -23,6 +23,9 @@ SnareSimAudioProcessor::SnareSimAudioProcessor()
         jassert (raw != nullptr);
         rawParameters[static_cast<std::size_t> (spec.id)] = raw;
     }
+    // The factory presets are read from their embedded files on first use (allocating): here,
+    // so that a host asking for the programs from its audio thread finds them ready.
+    snaresim::factoryPresets();
 }
 
 SnareSimAudioProcessor::~SnareSimAudioProcessor()

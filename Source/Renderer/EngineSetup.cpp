@@ -27,7 +27,7 @@ bool isPresetFile(std::string_view text)
     return text.find('/') != std::string_view::npos; // no factory preset's name holds one
 }
 
-ParameterSet readPresetFile(const std::filesystem::path& path)
+ParameterSet presetFileParameters(const std::filesystem::path& path)
 {
     try
     {
@@ -44,7 +44,7 @@ ParameterSet makeParameters(const RenderJob& job)
     ParameterSet params;
 
     if (job.preset && isPresetFile(*job.preset))
-        params = readPresetFile(*job.preset);
+        params = presetFileParameters(*job.preset);
     else if (job.preset && ! applyPreset(*job.preset, params))
     {
         std::string names;

@@ -24,7 +24,7 @@ ParameterSet makeParameters(const RenderJob& job);
 bool isPresetFile(std::string_view text);
 // The defaults with a preset file's values; a UserError naming the file (and the line) when it
 // cannot be read or is not a valid preset file.
-ParameterSet readPresetFile(const std::filesystem::path& path);
+ParameterSet presetFileParameters(const std::filesystem::path& path);
 
 // makeDrumConfig(params, job.sampleRate_Hz), made lossless for --lossless.
 DrumConfig makeConfig(const RenderJob& job, const ParameterSet& params);
