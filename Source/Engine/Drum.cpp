@@ -23,11 +23,6 @@ DrumConfig validated(const DrumConfig& c)
     return run;
 }
 
-double reserveFor(const DrumConfig& c, const MembraneSpec& m)
-{
-    return Cavity::kineticReserve(c.cavity, m.radius_m, m.density_kg_per_m2, 1.0 / c.sampleRate_Hz);
-}
-
 // step()'s clock: lap(phase) adds the time since the last lap (or the step's start) to the
 // phase. The one that is off compiles to nothing.
 template <bool On>
@@ -73,14 +68,17 @@ auto Drum::energyTerms() const
                         EnergyTerm("mallets", mallets, malletCoupling),            // eq. (37)
                         EnergyTerm("snares", wires, snareCoupling).when(engaged),  // eq. (38)
                         EnergyTerm("cavity", air),                                 // (K/2) dV^{n+1} dV^n
+                        EnergyTerm("outside", outside).listedIf(outside.active()), // OutsideAir.h
                         EnergyTerm("airbox", box).listedIf(box.active()) };        // eq. (36)
 }
 
 Drum::Drum(const DrumConfig& config)
     : cfg(validated(config)), k(1.0 / config.sampleRate_Hz), air(cfg.cavity, cfg.batter.radius_m),
-      batterHead(cfg.batter, k, reserveFor(cfg, cfg.batter)), carryHead(cfg.carry, k, reserveFor(cfg, cfg.carry)),
+      batterHead(cfg.batter, k, cfg.kineticReserve(true)), carryHead(cfg.carry, k, cfg.kineticReserve(false)),
       wires(cfg.fittedSnares(), cfg.carry.radius_m, k), snareCoupling(cfg.snares, wires, carryHead),
       mallets(makeMallets(cfg, batterHead, k)), malletCoupling(batterHead, mallets), airCoupling(batterHead, carryHead, air),
+      outside(cfg.cavity.model == AirModel::airbox ? OutsideAirSpec {} : cfg.outside, cfg.batter, cfg.carry, k),
+      outsideCoupling(batterHead, carryHead, outside),
       engaged(cfg.snares.engaged)
 {
     if (cfg.cavity.model == AirModel::airbox)
@@ -184,9 +182,11 @@ void Drum::applyLive(const DrumConfig& next) noexcept
     if (n.mics.bottomX_frac != cfg.mics.bottomX_frac || n.mics.bottomY_frac != cfg.mics.bottomY_frac)
         carryHead.grid().makeDistribution(n.mics.bottomX_frac * R, n.mics.bottomY_frac * R, 0.0, bottomMic);
     const HeadPrecision heads[2] = { cfg.batter.precision, cfg.carry.precision }; // the grids' own
+    const OutsideAirSpec outsideSpec = cfg.outside; // the model's own, like the grids
     cfg = n;
     cfg.batter.precision = heads[0];
     cfg.carry.precision = heads[1];
+    cfg.outside = outsideSpec;
     setSnaresEngaged(n.snares.engaged);
 }
 
@@ -260,12 +260,24 @@ void Drum::setSnaresEngaged(bool on)
 template <class Lap>
 [[gnu::noinline]] void Drum::stepCouplings(Lap& lap)
 {
-    // 1. The components' free updates, with the cavity's pressure at time n on the heads
-    //    (explicit, CavityCoupling.h).
-    batterHead.computeFree(airCoupling.pressureOnBatter()); // eq. (22) without the contact force
-    lap(StepPhase::batterFree);
-    carryHead.computeFree(airCoupling.pressureOnCarry());   // eq. (23) without snare and end forces
-    lap(StepPhase::carryFree);
+    // 1. The components' free updates, with the cavity's and the outside air's pressures at
+    //    time n on the heads (explicit, CavityCoupling.h, OutsideAirCoupling.h).
+    if (outside.active())
+    {
+        outside.computeFree();
+        const HeadPressure b = outsideCoupling.onBatter(), c = outsideCoupling.onCarry();
+        batterHead.computeFree(airCoupling.pressureOnBatter() + b.p0, b.px, b.py); // eq. (22) without the contact force
+        lap(StepPhase::batterFree);
+        carryHead.computeFree(airCoupling.pressureOnCarry() + c.p0, c.px, c.py);   // eq. (23) without snare and end forces
+        lap(StepPhase::carryFree);
+    }
+    else
+    {
+        batterHead.computeFree(airCoupling.pressureOnBatter()); // eq. (22) without the contact force
+        lap(StepPhase::batterFree);
+        carryHead.computeFree(airCoupling.pressureOnCarry());   // eq. (23) without snare and end forces
+        lap(StepPhase::carryFree);
+    }
     if (engaged)
     {
         wires.computeFree();                                // eq. (28) without collision and end forces
@@ -391,6 +403,8 @@ double Drum::stepWith(Lap& lap)
 
     const double dVNow = air.volumeChangeNow();
     airCoupling.step(); // dV^{n+1}
+    if (outside.active())
+        outsideCoupling.step(); // q^{n+1}
     lap(box.active() ? StepPhase::signals : StepPhase::cavity); // the air box path counts it with the signals
 
     // 3. Energy at n + 1/2 and the microphones, then every time level moves on.
@@ -421,6 +435,8 @@ double Drum::stepWith(Lap& lap)
         snareCoupling.advance();
     }
     air.advance();
+    if (outside.active())
+        outside.advance();
     if (box.active())
         box.advance();
     for (auto& ml : mallets)
@@ -476,6 +492,7 @@ void Drum::reset()
     wires.clear();
     snareCoupling.clear();
     air.clear();
+    outside.clear();
     box.clear();
     for (auto& m : mallets)
         m.park();

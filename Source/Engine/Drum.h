@@ -16,6 +16,8 @@
 #include "Mallet.h"
 #include "MalletContact.h"
 #include "Membrane.h"
+#include "OutsideAir.h"
+#include "OutsideAirCoupling.h"
 #include "SnareContact.h"
 #include "SnareWires.h"
 #include "StepProfile.h"
@@ -121,6 +123,7 @@ public:
     const SnareWires& snareWires() const { return wires; }
     const SnareContact& snareContact() const { return snareCoupling; }
     const Cavity& cavity() const { return air; }
+    const OutsideAir& outsideAir() const { return outside; }
     // The air box (AirModel::airbox): active() false otherwise.
     const DrumAir& airBox() const { return box; }
     // The air microphones' pressure rho_a dt+ Psi (Pa) at the last step (air box only; 0 mics otherwise).
@@ -159,6 +162,8 @@ private:
     std::vector<Mallet> mallets; // components; never resized after construction
     MalletContact malletCoupling; // coupling: mallets - batter
     CavityCoupling airCoupling;  // coupling: heads - cavity
+    OutsideAir outside;          // component: the outside air's channels; inactive without
+    OutsideAirCoupling outsideCoupling; // coupling: heads - outside air
     DrumAir box;                 // component (air box) with its couplings to the heads; inactive without
     std::vector<double> wiresSaved; // air box: the wires' free u^{n+1}, for the joint solve's trials
     std::array<double, MalletContact::maxMallets> malletsSaved {};

@@ -2,10 +2,12 @@
 
 #include "Cavity.h"
 #include "Membrane.h"
+#include "OutsideAir.h"
 #include "SnareWires.h"
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -103,9 +105,19 @@ void DrumConfig::validate() const
     require(std::isfinite(cavity.airDensity_kg_per_m3) && cavity.airDensity_kg_per_m3 > 0.0, "air density must be positive", cavity.airDensity_kg_per_m3);
     require(std::isfinite(cavity.soundSpeed_m_per_s) && cavity.soundSpeed_m_per_s > 0.0, "speed of sound must be positive", cavity.soundSpeed_m_per_s);
     require(std::abs(carry.radius_m - batter.radius_m) < 1e-12, "both heads must have the same radius", carry.radius_m);
-    for (const MembraneSpec* m : { &batter, &carry })
+    for (const RadiationChannelSpec* ch : { &outside.monopole, &outside.dipole, &outside.tiltSum, &outside.tiltDiff })
     {
-        const double reserve = Cavity::kineticReserve(cavity, m->radius_m, m->density_kg_per_m2, k);
+        require(std::isfinite(ch->mass) && ch->mass > 0.0, "an outside-air channel's mass must be positive", ch->mass);
+        require(ch->resistance > 0.0, "an outside-air channel's resistance must be positive (infinite: lossless)", ch->resistance);
+    }
+    require(std::isfinite(outside.cornerLimit_Hz) && outside.cornerLimit_Hz > 0.0, "the outside air's corner limit must be positive",
+            outside.cornerLimit_Hz);
+    require(std::isfinite(outside.reserve) && outside.reserve > 0.0 && outside.reserve <= 0.2, "the outside air's reserve must be within 0..0.2",
+            outside.reserve);
+    for (const bool ofBatter : { true, false })
+    {
+        const MembraneSpec* m = ofBatter ? &batter : &carry;
+        const double reserve = kineticReserve(ofBatter);
         require(reserve < 0.5, "the cavity is too stiff for this sample rate (shell too shallow)", reserve);
         validateMembrane(*m, k, reserve);
     }
@@ -194,7 +206,7 @@ SnareSpec DrumConfig::fittedSnares() const
 {
     SnareSpec s = snares;
     const double k = 1.0 / sampleRate_Hz;
-    const double hc = Membrane::gridSpacing(carry, k, Cavity::kineticReserve(cavity, carry.radius_m, carry.density_kg_per_m2, k));
+    const double hc = Membrane::gridSpacing(carry, k, kineticReserve(false));
     const double allowed = carry.radius_m - 1.5 * hc;
     const double reach = std::hypot(0.5 * s.length_m, 0.5 * (s.count - 1) * s.spacing_m);
     if (reach > allowed && reach > 0.0)
@@ -217,7 +229,18 @@ DrumConfig DrumConfig::lossless() const
     c.snares.sigma1_m2_per_s = 0.0;
     c.air.walls = AirWalls::reflecting;
     c.air.sigma_m = 0.0;
+    for (RadiationChannelSpec* ch : { &c.outside.monopole, &c.outside.dipole, &c.outside.tiltSum, &c.outside.tiltDiff })
+        ch->resistance = std::numeric_limits<double>::infinity();
     return c;
+}
+
+double DrumConfig::kineticReserve(bool ofBatter) const
+{
+    const double k = 1.0 / sampleRate_Hz;
+    const MembraneSpec& head = ofBatter ? batter : carry;
+    // the two bounds add (the cavity's already doubled for margin, OutsideAir.h's)
+    const double air = cavity.model == AirModel::airbox ? 0.0 : OutsideAir::kineticReserve(outside, batter, carry, k, ofBatter);
+    return Cavity::kineticReserve(cavity, head.radius_m, head.density_kg_per_m2, k) + air;
 }
 
 DrumConfig::DrumConfig() : DrumConfig(mapParameters(ParameterSet {}, 48000.0)) {}
@@ -262,6 +285,7 @@ DrumConfig mapParameters(const ParameterSet& p, double sampleRate_Hz) noexcept
     c.cavity.shellDepth_m = p.get(ParamId::shellDepth);
     c.cavity.gridShellDepth_m = spec(ParamId::shellDepth).minValue;
     c.cavity.model = static_cast<AirModel>(std::lround(p.get(ParamId::airModel))); // none, cavity, airbox: the choices in order
+    c.outside.enabled = p.get(ParamId::outsideAir) > 0.5;
     c.air.sigma_m = p.get(ParamId::airLoss);
     // ParamId::offlineAirBox is the host's, not the drum's: the plug-in reads it to choose the air
     // model of its offline renders (it arrives here as the air model).

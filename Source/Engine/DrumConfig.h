@@ -90,6 +90,27 @@ struct CavitySpec
     double soundSpeed_m_per_s = 343.0;
 };
 
+// The outside air of the reduced model (OutsideAir.h): six radiation channels, each a mass M in
+// parallel with a resistance R, calibrated against the drum in the air box (docs/MODEL.md,
+// "Outside air"). Not used in the air box, which is the outside air itself.
+struct RadiationChannelSpec
+{
+    double mass = 0.0;       // M: kg/m^4 on a volume, kg/m^6 on a first moment
+    double resistance = 0.0; // R: Pa s/m^3 on a volume, Pa s/m^5 on a first moment; infinite: lossless
+};
+
+struct OutsideAirSpec
+{
+    bool enabled = false;                  // from the schema
+    // scripts/calibrate_outside_air.py against the 1.4 m and 1.8 m air boxes (docs/MODEL.md)
+    RadiationChannelSpec monopole { 1.311, 1.418e4 };  // V_b - V_c: the volume pushed out
+    RadiationChannelSpec dipole { 1.294, 6.579e4 };    // V_b + V_c: the volume carried through
+    RadiationChannelSpec tiltSum { 251.8, 3.185e7 };   // X_b + X_c: both heads' first moments together
+    RadiationChannelSpec tiltDiff { 130.2, 4.488e7 };  // X_b - X_c: against each other
+    double cornerLimit_Hz = 3000.0;        // the compliance 1/K behind each channel: sqrt(K/M) at most this
+    double reserve = 0.05;                 // and at most this share of the lighter head's kinetic energy
+};
+
 // A point in the air, metres from the drum's centre (z up, the batter at z = +H/2).
 struct AirPoint
 {
@@ -139,6 +160,7 @@ struct DrumConfig
     SnareSpec snares;
     CavitySpec cavity;
     DrumAirSpec air;                    // used when cavity.model == AirModel::airbox
+    OutsideAirSpec outside;             // with the cavity or no air, not in the air box
     MicSpec mics;
     MalletSpec mallet;
     int numMallets = 4;                 // independent mallets for flams and rolls
@@ -150,7 +172,12 @@ struct DrumConfig
     // grid the scheme needs cannot be built.
     void validate() const;
 
-    // All losses off (sigma0 = sigma1 = 0, the air box's walls reflecting and sigma_a = 0):
+    // Share of a head's kinetic energy kept in its grid for the explicit couplings (the cavity,
+    // the outside air): Membrane's kineticReserve.
+    double kineticReserve(bool ofBatter) const;
+
+    // All losses off (sigma0 = sigma1 = 0, the air box's walls reflecting and sigma_a = 0,
+    // the outside air's resistances open):
     // the energy is then conserved to round-off.
     DrumConfig lossless() const;
 

@@ -57,6 +57,25 @@ Membrane::Membrane(const MembraneSpec& s, double timeStep, double reserve)
         wNow = wNext;
         wPrev = wNext;
     }
+    // x and y times the mask, for the first moments (tiltNext) and a tilting pressure
+    std::vector<double> xs((size_t) g.numNodes(), 0.0), ys = xs;
+    for (int iy = 0; iy < n; ++iy)
+        for (int ix = 0; ix < n; ++ix)
+        {
+            const size_t i = (size_t) g.index(ix, iy);
+            xs[i] = g.mask()[i] * g.x(ix);
+            ys[i] = g.mask()[i] * g.x(iy);
+        }
+    if (single)
+    {
+        fX.assign(xs.begin(), xs.end());
+        fY.assign(ys.begin(), ys.end());
+    }
+    else
+    {
+        dX = std::move(xs);
+        dY = std::move(ys);
+    }
     setCoefficients(s.tension_N_per_m, s.sigma0_per_s, s.sigma1_m2_per_s);
 }
 
@@ -81,16 +100,21 @@ void Membrane::setCoefficients(double tension, double s0, double s1)
 
 namespace
 {
-// One row of eq. (22): out = c0 w + c1 (4 neighbours of w) + d0 wp + d1 (4 neighbours of wp) + push,
-// for `count` nodes that all lie inside the disc; returns the sum of out.
+// One row of eq. (22): out = c0 w + c1 (4 neighbours of w) + d0 wp + d1 (4 neighbours of wp) + push
+// (+ slope m along the row with Tilt), for `count` nodes that all lie inside the disc; returns the
+// sum of out.
+template <bool Tilt>
 SNARESIM_WIDE_VECTOR_CLONES double updateRow(double* __restrict out, const double* __restrict w, const double* __restrict wp,
-                                        int n, int count, double c0, double c1, double d0, double d1, double push)
+                                        int n, int count, double c0, double c1, double d0, double d1, double push, double slope)
 {
     for (int m = 0; m < count; ++m)
     {
         const double nb = w[m - 1] + w[m + 1] + w[m - n] + w[m + n];
         const double nbp = wp[m - 1] + wp[m + 1] + wp[m - n] + wp[m + n];
-        out[m] = c0 * w[m] + c1 * nb + d0 * wp[m] + d1 * nbp + push;
+        if constexpr (Tilt)
+            out[m] = c0 * w[m] + c1 * nb + d0 * wp[m] + d1 * nbp + (push + slope * (double) m);
+        else
+            out[m] = c0 * w[m] + c1 * nb + d0 * wp[m] + d1 * nbp + push;
     }
     // the row is in L1 now: sum it in four running sums
     double acc[4] = {};
@@ -110,16 +134,23 @@ SNARESIM_WIDE_VECTOR_CLONES double updateRow(double* __restrict out, const doubl
 // Laplacian, so that no coefficient near 2 multiplies w: a float
 // coefficient's rounding then moves the modes by parts in 1e8 of their small restoring term,
 // not of 2 w. Returns the sum of out, in double.
+// With Tilt, a pressure px x + py y is added (xs, ys: x and y times the mask).
+template <bool Tilt>
 SNARESIM_WIDE_VECTOR_CLONES double updateGridFloat(float* __restrict out, const float* __restrict w, const float* __restrict wp,
-                                                   const float* __restrict mask, int n, int count, float r, float cl, float cs,
-                                                   float push)
+                                                   const float* __restrict mask, const float* __restrict xs,
+                                                   const float* __restrict ys, int n, int count, float r, float cl, float cs,
+                                                   float push, float px, float py)
 {
     for (int m = 0; m < count; ++m)
     {
         const float c = w[m], v = c - wp[m];
         const float nb = w[m - 1] + w[m + 1] + w[m - n] + w[m + n];
         const float nbp = wp[m - 1] + wp[m + 1] + wp[m - n] + wp[m + n];
-        out[m] = mask[m] * (c + (r * v + cl * (nb - 4.0f * c) + cs * ((nb - nbp) - 4.0f * v) + push));
+        if constexpr (Tilt)
+            out[m] = mask[m] * (c + (r * v + cl * (nb - 4.0f * c) + cs * ((nb - nbp) - 4.0f * v) + push))
+                   + (px * xs[m] + py * ys[m]);
+        else
+            out[m] = mask[m] * (c + (r * v + cl * (nb - 4.0f * c) + cs * ((nb - nbp) - 4.0f * v) + push));
     }
     // sixteen running sums: two vectors of doubles per vector of floats, and enough of them
     // that the adds' latency does not bind
@@ -134,21 +165,53 @@ SNARESIM_WIDE_VECTOR_CLONES double updateGridFloat(float* __restrict out, const 
         acc[0] += acc[j];
     return acc[0];
 }
+// sum(xs w), sum(ys w) over count nodes, in double, in sixteen running sums each (the adds'
+// latency would bind a single sum).
+template <class Real>
+SNARESIM_WIDE_VECTOR_CLONES void firstMoments(const Real* __restrict w, const Real* __restrict xs, const Real* __restrict ys, int count,
+                                              double& sx, double& sy)
+{
+    double ax[16] = {}, ay[16] = {};
+    int m = 0;
+    for (; m + 16 <= count; m += 16)
+        for (int j = 0; j < 16; ++j)
+        {
+            ax[j] += (double) xs[m + j] * (double) w[m + j];
+            ay[j] += (double) ys[m + j] * (double) w[m + j];
+        }
+    for (; m < count; ++m)
+    {
+        ax[0] += (double) xs[m] * (double) w[m];
+        ay[0] += (double) ys[m] * (double) w[m];
+    }
+    for (int j = 1; j < 16; ++j)
+    {
+        ax[0] += ax[j];
+        ay[0] += ay[j];
+    }
+    sx = ax[0];
+    sy = ay[0];
+}
 } // namespace
 
 // Double: row by row over the disc's runs of interior nodes (nodes outside stay zero, the
 // fixed rim); single: the whole grid at once (updateGridFloat). Both sum w^{n+1} for the
 // cavity on the way and are built for AVX-512, AVX2+FMA and baseline x86-64; the loader picks
 // the one the CPU runs.
-void Membrane::computeFree(double pressure)
+void Membrane::computeFree(double pressure) { computeFree(pressure, 0.0, 0.0); }
+
+void Membrane::computeFree(double p0, double px, double py)
 {
     const int n = g.width();
-    const double push = forceGain() * pressure; // eq. (22) with the pressure term, force density p
+    const double gain = forceGain();
+    const double push = gain * p0; // eq. (22) with the pressure term, force density p
+    const bool tilt = px != 0.0 || py != 0.0;
     if (single)
     {
         // rows 1 .. n-2, whole: every neighbour read stays inside the padded grid
-        sumNext = updateGridFloat(fNext.data() + n, fNow.data() + n, fPrev.data() + n, fMask.data() + n, n, n * (n - 2), r, cl,
-                                  cs, (float) push);
+        const auto update = tilt ? updateGridFloat<true> : updateGridFloat<false>;
+        sumNext = update(fNext.data() + n, fNow.data() + n, fPrev.data() + n, fMask.data() + n, fX.data() + n, fY.data() + n, n,
+                         n * (n - 2), r, cl, cs, (float) push, (float) (gain * px), (float) (gain * py));
         return;
     }
     double sum = 0.0;
@@ -156,10 +219,26 @@ void Membrane::computeFree(double pressure)
     {
         const int begin = iy * n + rowBegin[(size_t) iy];
         const int count = rowEnd[(size_t) iy] - rowBegin[(size_t) iy];
-        if (count > 0)
-            sum += updateRow(wNext.data() + begin, wNow.data() + begin, wPrev.data() + begin, n, count, a0, a1, b0, b1, push);
+        if (count <= 0)
+            continue;
+        if (tilt)
+            sum += updateRow<true>(wNext.data() + begin, wNow.data() + begin, wPrev.data() + begin, n, count, a0, a1, b0, b1,
+                                   push + gain * (px * g.x(rowBegin[(size_t) iy]) + py * g.x(iy)), gain * px * h);
+        else
+            sum += updateRow<false>(wNext.data() + begin, wNow.data() + begin, wPrev.data() + begin, n, count, a0, a1, b0, b1, push, 0.0);
     }
     sumNext = sum;
+}
+
+std::array<double, 2> Membrane::tiltNext() const
+{
+    const int n = g.width();
+    double sx = 0.0, sy = 0.0;
+    if (single)
+        firstMoments(fNext.data(), fX.data(), fY.data(), n * n, sx, sy);
+    else
+        firstMoments(wNext.data(), dX.data(), dY.data(), n * n, sx, sy);
+    return { h * h * sx, h * h * sy };
 }
 
 void Membrane::applyForce(const GridDistribution& d, double force)

@@ -12,6 +12,7 @@
 #include "CircularGrid.h"
 #include "DrumConfig.h"
 
+#include <array>
 #include <vector>
 
 namespace snaresim
@@ -38,6 +39,11 @@ public:
     // w^{n+1} from w^n, w^{n-1} with no contact force (eq. 22), with a uniform pressure p
     // (Pa, pushing up) from the cavity acting at time n.
     void computeFree(double pressure_Pa = 0.0);
+    // The same with a pressure p0 + px x + py y (Pa; px, py in Pa/m, x and y from the head's
+    // centre): the cavity's and the outside air's (OutsideAirCoupling.h).
+    void computeFree(double p0_Pa, double px_Pa_per_m, double py_Pa_per_m);
+    // h^2 sum(x w), h^2 sum(y w) at n+1: the head's first moments (m^4), a pass over the grid.
+    std::array<double, 2> tiltNext() const;
     // Add an external force f (N, positive up) spread by g to w^{n+1}: w += k^2/(rho q) g f,
     // times the node's response (below).
     void applyForce(const GridDistribution& d, double force_N);
@@ -167,6 +173,8 @@ private:
     std::vector<double> wNext, wNow, wPrev; // double precision, else empty
     std::vector<float> fNext, fNow, fPrev;  // single precision, else empty
     std::vector<float> fMask;               // single precision: the grid's mask
+    std::vector<float> fX, fY;              // single precision: x and y times the mask
+    std::vector<double> dX, dY;             // double precision: the same
 };
 
 } // namespace snaresim

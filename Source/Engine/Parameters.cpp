@@ -80,6 +80,9 @@ constexpr std::array<ParameterSpec, kNumParameters> kSpecs {{
     { P::headPrecision, "head_precision", "Head arithmetic", "", 0.0, 1.0, 1.0, S::linear, N::newModel,
       "The heads' state and update (eq. 22) in double precision, or in single: the heads a quarter to a third cheaper, the energy identity held to float round-off (BENCHMARKS.md); the air box always runs them in double",
       K, "double|single", "model" },
+    { P::outsideAir, "outside_air", "Outside air", "", 0.0, 1.0, 0.0, S::linear, N::newModel,
+      "The air outside the drum with the cavity: its mass lowers the heads' lowest modes and it carries their sound away (radiation channels calibrated against the air box; the air box has its own)",
+      B, "off|on", "heads" },
 }};
 
 constexpr bool tableInOrder()

@@ -54,6 +54,8 @@ enum class ParamId : std::size_t
     offlineAirBox,
     // the heads' arithmetic (appended likewise)
     headPrecision,
+    // the outside air of the reduced model (appended likewise)
+    outsideAir,
     count
 };
 

@@ -8,11 +8,18 @@
 //       The batter's (0,1) mode alone, in vacuum and in the 0.6 m box, against the added mass
 //       of a baffled membrane; the heads' (0,1) pair in the cavity and in the box: frequencies
 //       and decay rates.
+//   airbox_figures modes [BOX_SIDE_M] [STEPS]
+//       The drum's lowest modes (the (0,1) pair, each head's (1,1)) with lossless heads, snares
+//       off: in the cavity alone, with the outside air, and in the air box (absorbing walls).
+//   airbox_figures modes-model Mm Rm Md Rd Ms Rs Mt Rt ANTI_NEAR
+//       The same for the cavity with outside air of the given channels (the calibration's
+//       inner loop, scripts/calibrate_outside_air.py).
 //   airbox_figures s52
 //       The paper's section 5.2 in the cavity and in the box, and the variations that test
 //       what moves the wires' timing: when they are lowest and when they are back on the head.
 
 #include "AirBandRun.h"
+#include "LowModes.h"
 #include "ModePairs.h"
 #include "Pluck01.h"
 #include "Section52.h"
@@ -252,6 +259,84 @@ int pairs()
     }
     return 0;
 }
+// The pair's test drum (the pair tables' grids), snares off, lossless heads; the air's own
+// losses (the box's absorbing walls, the outside air's resistances) kept.
+DrumConfig modesDrum(AirModel model, bool outside)
+{
+    DrumConfig cfg = test::wholeDrum();
+    cfg.sampleRate_Hz = 44100.0;
+    cfg.snares.engaged = false;
+    cfg.cavity.gridShellDepth_m = 0.05;
+    cfg.cavity.model = model;
+    cfg.outside.enabled = outside;
+    DrumConfig run = cfg.lossless();
+    run.air = cfg.air;
+    run.outside = cfg.outside;
+    return run;
+}
+
+void printPeaks(const char* name, const std::vector<double>& x, double fs)
+{
+    const auto X = test::hannSpectrum(x, 8);
+    const auto found = test::peaks(X, fs / (2.0 * (double) X.size()), 80.0, 1000.0);
+    std::printf("  %-6s", name);
+    for (size_t i = 0; i < std::min<size_t>(6, found.size()); ++i)
+        std::printf(" %7.1f Hz %6.1f dB", found[i].frequency, 20.0 / std::log(10.0) * (found[i].logMagnitude - found[0].logMagnitude));
+    std::printf("\n");
+}
+
+void printAllPeaks(const test::HeadMoments& m)
+{
+    std::vector<double> sum(m.vb.size()), diff(m.vb.size());
+    for (size_t i = 0; i < sum.size(); ++i)
+    {
+        sum[i] = m.vb[i] + m.vc[i];
+        diff[i] = m.vb[i] - m.vc[i];
+    }
+    printPeaks("sum", sum, m.sampleRate_Hz);
+    printPeaks("diff", diff, m.sampleRate_Hz);
+    printPeaks("xb", m.xb, m.sampleRate_Hz);
+    printPeaks("xc", m.xc, m.sampleRate_Hz);
+}
+
+void printModes(const char* name, const test::LowModes& m)
+{
+    const auto one = [](const char* what, const test::Mode& x) { std::printf(" %s %7.2f Hz %7.1f dB/s;", what, x.frequency_Hz, x.decay_dB_per_s); };
+    std::printf("%-34s", name);
+    one("in phase", m.inPhase);
+    one("anti-phase", m.antiPhase);
+    one("batter (1,1)", m.batter11);
+    one("carry (1,1)", m.carry11);
+    std::printf("\n");
+    std::fflush(stdout);
+}
+
+int modes(double side, int steps, double antiNear)
+{
+    DrumConfig box = modesDrum(AirModel::airbox, false);
+    box.air.walls = AirWalls::absorbing;
+    box.air.sigma_m = 0.0;
+    box.air.size_m = { side, side, side };
+    box.air.threads = 2;
+    const test::LowModes air = test::lowModes(box, steps, { 0.0, antiNear });
+    printModes("cavity (no carry (1,1): not excited)", test::lowModes(modesDrum(AirModel::cavity, false), steps));
+    printModes("cavity + outside air", test::lowModes(modesDrum(AirModel::cavity, true), steps, { 0.0, air.antiPhase.frequency_Hz }));
+    char name[64];
+    std::snprintf(name, sizeof name, "air box %.1f m, absorbing walls", side);
+    printModes(name, air);
+    return 0;
+}
+
+int modesModel(char** v)
+{
+    DrumConfig cfg = modesDrum(AirModel::cavity, true);
+    RadiationChannelSpec* ch[4] = { &cfg.outside.monopole, &cfg.outside.dipole, &cfg.outside.tiltSum, &cfg.outside.tiltDiff };
+    for (int i = 0; i < 4; ++i)
+            *ch[i] = { std::atof(v[2 * i]), std::atof(v[2 * i + 1]) };
+    printModes("model", test::lowModes(cfg, 1 << 15, { 0.0, v[8] ? std::atof(v[8]) : 0.0 }));
+    return 0;
+}
+
 int s52()
 {
     using test::section52Config;
@@ -329,8 +414,12 @@ int main(int argc, char** argv)
         return s52();
     if (what == "pairs")
         return pairs();
+    if (what == "modes")
+        return modes(argc > 2 ? std::atof(argv[2]) : 1.4, argc > 3 ? std::atoi(argv[3]) : 1 << 15, argc > 4 ? std::atof(argv[4]) : 340.0);
+    if (what == "modes-model" && argc >= 11)
+        return modesModel(argv + 2);
     if (what == "band" && argc >= 3)
         return band(argv[2], argc > 3 ? std::atof(argv[3]) : 1.0, argc > 4 ? std::atof(argv[4]) : 0.6);
-    std::fprintf(stderr, "usage: airbox_figures band OUT_DIR [SECONDS] [BOX_SIDE_M] | pairs | s52\n");
+    std::fprintf(stderr, "usage: airbox_figures band OUT_DIR [SECONDS] [BOX_SIDE_M] | pairs | modes [BOX_SIDE_M] [STEPS] | modes-model Mm Rm Md Rd Ms Rs Mt Rt ANTI_NEAR | s52\n");
     return 2;
 }

@@ -154,6 +154,7 @@ struct GridShape
     AirModel air;
     double airSpacing; // 0 without the air box
     bool singleHeads;
+    bool outsideAir;
     bool operator==(const GridShape&) const = default;
 };
 
@@ -161,7 +162,7 @@ GridShape shapeOf(const Drum& d)
 {
     return { d.batter().grid().numInterior(), d.carry().grid().numInterior(), d.snareWires().intervals(),
              d.snareContact().numPoints(), d.config().snares.scheme, d.config().cavity.model,
-             d.airBox().active() ? d.airBox().air().spacing() : 0.0, d.batter().singlePrecision() };
+             d.airBox().active() ? d.airBox().air().spacing() : 0.0, d.batter().singlePrecision(), d.outsideAir().active() };
 }
 } // namespace
 
@@ -215,7 +216,8 @@ TEST_CASE("a change the schema says rebuilds the model changes the grids or the 
                                   || a.wireIntervals != b.wireIntervals || a.contactPoints != b.contactPoints
                                   || a.airSpacing != b.airSpacing;
             changed = s.needs == ChangeNeeds::newGrid ? gridsDiffer
-                                                      : (a.scheme != b.scheme || a.air != b.air || a.singleHeads != b.singleHeads);
+                                                      : (a.scheme != b.scheme || a.air != b.air || a.singleHeads != b.singleHeads
+                                                         || a.outsideAir != b.outsideAir);
             if (changed)
                 break;
         }
