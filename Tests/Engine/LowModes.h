@@ -100,8 +100,9 @@ inline LowModes lowModes(const DrumConfig& cfg, int steps = 1 << 15, ModePair ex
     LowModes out;
     const SweptVolumes v = sweptVolumes(cfg, steps);
     const ModePair pair = measuredPairs(v, expected);
-    out.inPhase = { pair.inPhase, modeDecay_dB_per_s(v, +1.0, pair.inPhase) };
-    out.antiPhase = { pair.antiPhase, modeDecay_dB_per_s(v, -1.0, pair.antiPhase) };
+    // a mode not found stays 0 Hz, 0 dB/s
+    out.inPhase = { pair.inPhase, pair.inPhase > 0.0 ? modeDecay_dB_per_s(v, +1.0, pair.inPhase) : 0.0 };
+    out.antiPhase = { pair.antiPhase, pair.antiPhase > 0.0 ? modeDecay_dB_per_s(v, -1.0, pair.antiPhase) : 0.0 };
     tiltModes(headMoments(cfg, steps), out);
     return out;
 }
