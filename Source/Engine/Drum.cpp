@@ -262,22 +262,17 @@ template <class Lap>
 {
     // 1. The components' free updates, with the cavity's and the outside air's pressures at
     //    time n on the heads (explicit, CavityCoupling.h, OutsideAirCoupling.h).
+    HeadPressure b, c; // the outside air's, 0 without it
     if (outside.active())
     {
         outside.computeFree();
-        const HeadPressure b = outsideCoupling.onBatter(), c = outsideCoupling.onCarry();
-        batterHead.computeFree(airCoupling.pressureOnBatter() + b.p0, b.px, b.py); // eq. (22) without the contact force
-        lap(StepPhase::batterFree);
-        carryHead.computeFree(airCoupling.pressureOnCarry() + c.p0, c.px, c.py);   // eq. (23) without snare and end forces
-        lap(StepPhase::carryFree);
+        b = outsideCoupling.onBatter();
+        c = outsideCoupling.onCarry();
     }
-    else
-    {
-        batterHead.computeFree(airCoupling.pressureOnBatter()); // eq. (22) without the contact force
-        lap(StepPhase::batterFree);
-        carryHead.computeFree(airCoupling.pressureOnCarry());   // eq. (23) without snare and end forces
-        lap(StepPhase::carryFree);
-    }
+    batterHead.computeFree(airCoupling.pressureOnBatter() + b.p0, b.px, b.py); // eq. (22) without the contact force
+    lap(StepPhase::batterFree);
+    carryHead.computeFree(airCoupling.pressureOnCarry() + c.p0, c.px, c.py);   // eq. (23) without snare and end forces
+    lap(StepPhase::carryFree);
     if (engaged)
     {
         wires.computeFree();                                // eq. (28) without collision and end forces
