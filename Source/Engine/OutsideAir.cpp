@@ -82,12 +82,6 @@ void OutsideAir::computeFree()
     }
 }
 
-double OutsideAir::flowAcceleration(Channel c) const
-{
-    const size_t i = (size_t) c;
-    return (zNext[i] - 2.0 * zNow[i] + zPrev[i]) / (k * k);
-}
-
 double OutsideAir::energy() const
 {
     double e = 0.0;

@@ -64,10 +64,6 @@ public:
 
     // q^{n+1}, from the heads once every force is in (OutsideAirCoupling).
     void setCoordinatesNext(const Values& q) { qNext = q; }
-    const Values& coordinatesNow() const { return qNow; }
-    // The volume flow's acceleration into the outside air through the monopole and dipole
-    // channels over the step (m^3/s^2), for the microphones: (z^{n+1} - 2 z^n + z^{n-1}) / k^2.
-    double flowAcceleration(Channel c) const;
 
     double energy() const;   // at n + 1/2
     double stepLoss() const; // k sum p^2 / R: radiated over the step
