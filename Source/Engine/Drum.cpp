@@ -78,7 +78,7 @@ Drum::Drum(const DrumConfig& config)
       wires(cfg.fittedSnares(), cfg.carry.radius_m, k), snareCoupling(cfg.snares, wires, carryHead),
       mallets(makeMallets(cfg, batterHead, k)), malletCoupling(batterHead, mallets), airCoupling(batterHead, carryHead, air),
       outside(cfg.cavity.model == AirModel::airbox ? OutsideAirSpec {} : cfg.outside, cfg.batter, cfg.carry, k),
-      outsideCoupling(batterHead, carryHead, outside),
+      outsideCoupling(batterHead, carryHead, outside), listeners(cfg, batterHead, carryHead),
       engaged(cfg.snares.engaged)
 {
     if (cfg.cavity.model == AirModel::airbox)
@@ -91,11 +91,6 @@ Drum::Drum(const DrumConfig& config)
     registerTerms(ledger, terms);
     malletsTerm = termOwning(terms, mallets);
     snaresTerm = termOwning(terms, wires);
-    const double R = cfg.batter.radius_m;
-    topMic.reserve(4);
-    bottomMic.reserve(4);
-    batterHead.grid().makeDistribution(cfg.mics.topX_frac * R, cfg.mics.topY_frac * R, 0.0, topMic);
-    carryHead.grid().makeDistribution(cfg.mics.bottomX_frac * R, cfg.mics.bottomY_frac * R, 0.0, bottomMic);
 }
 
 void Drum::strike(double speed, double xFrac, double yFrac)
@@ -176,11 +171,14 @@ void Drum::applyLive(const DrumConfig& next) noexcept
     air.setSpec(n.cavity, n.batter.radius_m);
     for (auto& m : mallets)
         m.setSpec(n.mallet); // a mallet in flight keeps its position; its patch changes at the next strike
-    const double R = n.batter.radius_m;
-    if (n.mics.topX_frac != cfg.mics.topX_frac || n.mics.topY_frac != cfg.mics.topY_frac)
-        batterHead.grid().makeDistribution(n.mics.topX_frac * R, n.mics.topY_frac * R, 0.0, topMic);
-    if (n.mics.bottomX_frac != cfg.mics.bottomX_frac || n.mics.bottomY_frac != cfg.mics.bottomY_frac)
-        carryHead.grid().makeDistribution(n.mics.bottomX_frac * R, n.mics.bottomY_frac * R, 0.0, bottomMic);
+    auto moved = [](const AirPoint& a, const AirPoint& b) { return a.x_m != b.x_m || a.y_m != b.y_m || a.z_m != b.z_m; };
+    if (moved(n.mics.top, cfg.mics.top) || moved(n.mics.bottom, cfg.mics.bottom) || moved(n.mics.room, cfg.mics.room)
+        || n.cavity.shellDepth_m != cfg.cavity.shellDepth_m)
+    {
+        listeners.setPositions(n.mics, n.cavity.shellDepth_m); // a delay beyond the lines' length is held at it
+        if (box.active())
+            box.placeMics(n);
+    }
     const HeadPrecision heads[2] = { cfg.batter.precision, cfg.carry.precision }; // the grids' own
     const OutsideAirSpec outsideSpec = cfg.outside; // the model's own, like the grids
     cfg = n;
@@ -396,7 +394,6 @@ double Drum::stepWith(Lap& lap)
     retrieveRisingMallets();
     lap(StepPhase::malletsFree);
 
-    const double dVNow = air.volumeChangeNow();
     airCoupling.step(); // dV^{n+1}
     if (outside.active())
         outsideCoupling.step(); // q^{n+1}
@@ -409,18 +406,16 @@ double Drum::stepWith(Lap& lap)
         lap(StepPhase::energy);
     }
 
-    signals.top_m_per_s = velocityAt(batterHead, topMic);
-    signals.bottom_m_per_s = velocityAt(carryHead, bottomMic);
-    const double d2V = (air.volumeChangeNext() - 2.0 * dVNow + dVPrev) / (k * k);
-    signals.far_Pa = box.active() ? box.micPressure(box.numMics() - 1)
-                                  : cfg.cavity.airDensity_kg_per_m3 / (4.0 * std::numbers::pi * cfg.mics.farDistance_m) * d2V;
+    listeners.listen(batterHead, carryHead);
+    const bool boxMics = box.active() && cfg.air.numMics == 0; // the box's microphones are the drum's
+    signals.top_Pa = boxMics ? box.micPressure(0) : listeners.pressure(PressureMicrophones::top);
+    signals.bottom_Pa = boxMics ? box.micPressure(1) : listeners.pressure(PressureMicrophones::bottom);
+    signals.far_Pa = boxMics ? box.micPressure(2) : listeners.pressure(PressureMicrophones::room);
     const auto& m = cfg.mics;
     signals.mix = cfg.outputGain
-                * (m.mixTop * m.topGain * signals.top_m_per_s + m.mixBottom * m.bottomGain * signals.bottom_m_per_s
-                   + m.mixFar * m.farGain * signals.far_Pa);
+                * (m.mixTop * m.topGain * signals.top_Pa + m.mixBottom * m.bottomGain * signals.bottom_Pa + m.mixFar * m.farGain * signals.far_Pa);
     lap(StepPhase::signals);
 
-    dVPrev = dVNow;
     ++samplesRendered;
     batterHead.advance();
     carryHead.advance();
@@ -445,17 +440,12 @@ double Drum::output(Mic mic) const
     const auto& m = cfg.mics;
     switch (mic)
     {
-        case Mic::top: return cfg.outputGain * m.topGain * signals.top_m_per_s;
-        case Mic::bottom: return cfg.outputGain * m.bottomGain * signals.bottom_m_per_s;
+        case Mic::top: return cfg.outputGain * m.topGain * signals.top_Pa;
+        case Mic::bottom: return cfg.outputGain * m.bottomGain * signals.bottom_Pa;
         case Mic::far: return cfg.outputGain * m.farGain * signals.far_Pa;
         case Mic::mix: break;
     }
     return signals.mix;
-}
-
-double Drum::velocityAt(const Membrane& head, const GridDistribution& point) const
-{
-    return (head.sampleNext(point) - head.sampleNow(point)) / k;
 }
 
 void Drum::retrieveRisingMallets()
@@ -493,7 +483,7 @@ void Drum::reset()
         m.park();
     ledger.clearValues();
     signals = {};
-    dVPrev = 0.0;
+    listeners.clear();
     samplesRendered = 0;
 }
 

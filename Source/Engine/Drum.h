@@ -18,6 +18,7 @@
 #include "Membrane.h"
 #include "OutsideAir.h"
 #include "OutsideAirCoupling.h"
+#include "PressureMicrophones.h"
 #include "SnareContact.h"
 #include "SnareWires.h"
 #include "StepProfile.h"
@@ -44,18 +45,19 @@ struct SolverStats
 
 enum class Mic
 {
-    top,    // batter velocity at the top microphone point
-    bottom, // carry-head velocity at the bottom microphone point (snare side)
-    far,    // far-field monopole pressure
+    top,    // the sound pressure above the batter
+    bottom, // below the carry head (snare side)
+    far,    // at the room microphone
     mix     // the weighted mix that step() returns
 };
 
-// Signals of one step: head velocities at the microphones, far-field pressure, and the mix.
+// Signals of one step: the sound pressure at the microphones (MicSpec: PressureMicrophones.h;
+// in the air box, the box's own pressure there when its microphones are the drum's), and the mix.
 struct MicSignals
 {
-    double top_m_per_s = 0.0;
-    double bottom_m_per_s = 0.0;
-    double far_Pa = 0.0;        // monopole rho_a / (4 pi r) d^2(net displaced volume)/dt^2; air box: the last air mic
+    double top_Pa = 0.0;
+    double bottom_Pa = 0.0;
+    double far_Pa = 0.0;
     double mix = 0.0;           // the output sample
 };
 
@@ -126,6 +128,7 @@ public:
     const OutsideAir& outsideAir() const { return outside; }
     // The air box (AirModel::airbox): active() false otherwise.
     const DrumAir& airBox() const { return box; }
+    const PressureMicrophones& microphones() const { return listeners; }
     // The air microphones' pressure rho_a dt+ Psi (Pa) at the last step (air box only; 0 mics otherwise).
     int numAirMics() const { return box.active() ? box.numMics() : 0; }
     double airMicPressure(int i) const { return box.micPressure(i); }
@@ -148,7 +151,6 @@ private:
     void stepCouplingsInAir(Lap& lap); // the same with the air box
     void noteSolves(const ContactSolveResult& mallet, const SnareSolveResult* snare);
     void retrieveRisingMallets();
-    double velocityAt(const Membrane& head, const GridDistribution& point) const;
 
     static constexpr double kRetrieveHeight_m = 0.01; // rising mallets are taken back 1 cm above the head
 
@@ -168,7 +170,7 @@ private:
     std::vector<double> wiresSaved; // air box: the wires' free u^{n+1}, for the joint solve's trials
     std::array<double, MalletContact::maxMallets> malletsSaved {};
 
-    GridDistribution topMic, bottomMic;
+    PressureMicrophones listeners; // the microphones: a listener, no energy, no force
     EnergyLedger ledger;
     int malletsTerm = -1, snaresTerm = -1; // the ledger terms a strike and the snares switch change
     SolverStats stats;
@@ -178,7 +180,6 @@ private:
     StepProfile stepProfile;
     bool engaged = true;
     int nextMallet = 0;
-    double dVPrev = 0.0; // dV^{n-1}, for the far-field second difference
     long long samplesRendered = 0;
 };
 

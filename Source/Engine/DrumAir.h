@@ -90,6 +90,9 @@ public:
     int numMics() const { return micCount; }
     const AirPoint& micPoint(int i) const { return points[(size_t) i]; }
     double micPressure(int i) const { return pressures[(size_t) i]; }
+    // The microphones' points again from a config (DrumConfig::airMicPoints): the drum's own
+    // microphones move with it. Allocates nothing.
+    void placeMics(const DrumConfig& cfg) { micCount = cfg.airMicPoints(points); }
 
     // Call after a head's coefficients change (its sigma0 enters the solve). Allocates nothing.
     void refresh();

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <sstream>
 #include <stdexcept>
 
@@ -153,9 +154,21 @@ void DrumConfig::validate() const
             "maximum strike speed must be within 0..50 m/s", strikeSpeedMax_m_per_s);
     require(std::isfinite(strikeRadius_frac) && strikeRadius_frac >= 0.0 && strikeRadius_frac <= 0.95,
             "strike position must be within 0..0.95 R", strikeRadius_frac);
-    for (double r : { std::hypot(mics.topX_frac, mics.topY_frac), std::hypot(mics.bottomX_frac, mics.bottomY_frac) })
-        require(std::isfinite(r) && r <= 0.95, "microphone points must lie within 0.95 R of the centre", r);
-    require(std::isfinite(mics.farDistance_m) && mics.farDistance_m > 0.0, "far-field distance must be positive", mics.farDistance_m);
+    require(std::isfinite(mics.reach_m) && mics.reach_m > 0.0 && mics.reach_m <= 20.0, "microphone reach must be within 0..20 m",
+            mics.reach_m);
+    require(std::isfinite(mics.cellSize_m) && mics.cellSize_m > 0.0 && mics.cellSize_m <= batter.radius_m,
+            "microphone cell size must be within 0..R", mics.cellSize_m);
+    require(std::isfinite(mics.fineCellSize_m) && mics.fineCellSize_m > 0.0 && mics.fineCellSize_m <= mics.cellSize_m,
+            "microphone fine cell size must be within 0..cell size", mics.fineCellSize_m);
+    for (const AirPoint* p : { &mics.top, &mics.bottom, &mics.room })
+    {
+        const double r = std::hypot(p->x_m, p->y_m), d = std::hypot(r, p->z_m);
+        require(std::isfinite(d) && d <= mics.reach_m, "microphones must lie within the reach of the drum's centre (m)", d);
+        const double outside = std::max(std::abs(p->z_m) - 0.5 * cavity.shellDepth_m, r - batter.radius_m);
+        require(outside >= 0.005, "microphones must stand at least 5 mm outside the drum (m)", outside);
+    }
+    require(mics.top.z_m > 0.0 && mics.bottom.z_m < 0.0, "the top microphone must face the batter and the bottom one the carry head",
+            mics.top.z_m);
     for (double g : { mics.topGain, mics.bottomGain, mics.farGain, mics.mixTop, mics.mixBottom, mics.mixFar })
         require(std::isfinite(g), "microphone gains must be finite", g);
     require(std::isfinite(outputGain), "output gain must be finite", outputGain);
@@ -190,15 +203,20 @@ int DrumConfig::airMicPoints(std::array<AirPoint, DrumAirSpec::maxMics>& out) co
         std::copy_n(air.mics.begin(), n, out.begin());
         return n;
     }
-    const double R = batter.radius_m, H = cavity.shellDepth_m;
     const AirBoxSpec box = airBoxSpec();
     const double h = AirBox::gridSpacing(box, 1.0 / sampleRate_Hz);
-    const double reach = 0.25 / std::sqrt(2.0);
-    const double top = std::min(0.5 * H + reach, 0.5 * box.size_m[2] - 1.5 * h);
-    const double side = std::min(reach, 0.5 * box.size_m[0] - 1.5 * h);
-    out[0] = { 0.7 * R, 0.0, 0.5 * H + 0.04 };
-    out[1] = { 0.0, 0.0, -0.5 * H - 0.04 };
-    out[2] = { side, 0.0, top };
+    const AirPoint* own[3] = { &mics.top, &mics.bottom, &mics.room };
+    for (int m = 0; m < 3; ++m)
+    {
+        const double v[3] = { own[m]->x_m, own[m]->y_m, own[m]->z_m };
+        double c[3];
+        for (int a = 0; a < 3; ++a)
+        {
+            const double limit = 0.5 * box.size_m[(size_t) a] - 1.5 * h;
+            c[a] = std::clamp(v[a], -limit, limit);
+        }
+        out[(size_t) m] = { c[0], c[1], c[2] };
+    }
     return 3;
 }
 
@@ -271,8 +289,11 @@ DrumConfig mapParameters(const ParameterSet& p, double sampleRate_Hz) noexcept
     {
         m->gridSigma1_m2_per_s = spec(ParamId::highDamping).maxValue;
         m->gridCoarseness = coarseness;
-        m->precision = p.get(ParamId::headPrecision) >= 0.5 ? HeadPrecision::single_precision : HeadPrecision::double_precision;
     }
+    // Single precision for the batter alone: the carry head, which the snares strike, shifts
+    // the buzz's mean spectrum in float (docs/MODEL.md, "Heads in single precision").
+    c.batter.precision = p.get(ParamId::headPrecision) >= 0.5 ? HeadPrecision::single_precision : HeadPrecision::double_precision;
+    c.carry.precision = HeadPrecision::double_precision;
     c.batter.gridTension_N_per_m = spec(ParamId::batterTension).maxValue;
     c.carry.gridTension_N_per_m = spec(ParamId::carryTension).maxValue;
 
@@ -300,9 +321,14 @@ DrumConfig mapParameters(const ParameterSet& p, double sampleRate_Hz) noexcept
     c.mics.mixTop = p.get(ParamId::micTop);
     c.mics.mixBottom = p.get(ParamId::micBottom);
     c.mics.mixFar = p.get(ParamId::micRoom);
-    const double top = p.get(ParamId::micTopPosition);
-    c.mics.topX_frac = top * std::cos(0.6);
-    c.mics.topY_frac = top * std::sin(0.6);
+    // The top mic's point off the snares' line (the x axis); the bottom mic's close to it.
+    const double R = c.batter.radius_m, H = c.cavity.shellDepth_m;
+    const double top = p.get(ParamId::micTopPosition) * R, bottom = p.get(ParamId::micBottomPosition) * R;
+    c.mics.top = { top * std::cos(0.6), top * std::sin(0.6), 0.5 * H + p.get(ParamId::micTopHeight) };
+    c.mics.bottom = { bottom * std::cos(0.14), bottom * std::sin(0.14), -0.5 * H - p.get(ParamId::micBottomHeight) };
+    const double d = p.get(ParamId::micRoomDistance), angle = p.get(ParamId::micRoomAngle) * std::numbers::pi / 180.0;
+    c.mics.room = { d * std::sin(angle), 0.0, 0.5 * H + d * std::cos(angle) };
+    c.mics.reach_m = spec(ParamId::micRoomDistance).maxValue + spec(ParamId::shellDepth).maxValue; // any position of the schema
     c.outputGain = std::pow(10.0, p.get(ParamId::outputGain) / 20.0);
     return c;
 }

@@ -134,15 +134,19 @@ struct DrumAirSpec
     int numMics = 0;
 };
 
-// Microphones: velocity of each head at a point, and the far-field monopole.
+// Microphones: the sound pressure at three points outside the drum (PressureMicrophones.h),
+// metres from the drum's centre (z up, the batter at +H/2); from the schema.
 struct MicSpec
 {
-    double topX_frac = 0.0, topY_frac = 0.0;        // above the batter (from the schema)
-    double bottomX_frac = 0.35, bottomY_frac = 0.05; // below the carry head, near the snares
-    double farDistance_m = 1.0;
-    double topGain = 0.5;                // output per m/s
-    double bottomGain = 0.5;             // output per m/s
-    double farGain = 0.05;               // output per Pa
+    AirPoint top { 0.0, 0.0, 0.11 };     // above the batter
+    AirPoint bottom { 0.0, 0.0, -0.11 }; // below the carry head, under the snares
+    AirPoint room { 0.0, 0.0, 1.07 };    // the room
+    double reach_m = 2.5;                // no microphone farther from the centre (the delay lines' length)
+    double cellSize_m = 0.02;            // side of the heads' radiating cells
+    double fineCellSize_m = 0.008;       // and of those within three cells of a microphone's foot
+    double topGain = 5.7e-3;             // output per Pa
+    double bottomGain = 3.7e-3;          // output per Pa
+    double farGain = 0.041;              // output per Pa (the room)
     double mixTop = 0.0, mixBottom = 0.0, mixFar = 0.0; // weights of the mixed output (from the schema)
 };
 
@@ -189,9 +193,8 @@ struct DrumConfig
     // The air box of AirModel::airbox: its size resolved, the rigid shell with closed ends
     // (the heads replace the discs).
     AirBoxSpec airBoxSpec() const;
-    // The air microphones: air.mics, or when none is given a close top mic 4 cm above the
-    // batter at 0.7 R, a bottom mic 4 cm under the carry head's centre (under the snares), and
-    // a far mic 0.25 m from the batter's centre at 45 degrees (clamped inside the box).
+    // The air microphones: air.mics, or when none is given the drum's top, bottom and room
+    // microphones (MicSpec), each clamped inside the box, a cell and a half from its walls.
     int airMicPoints(std::array<AirPoint, DrumAirSpec::maxMics>& out) const;
 };
 

@@ -68,11 +68,15 @@ Membrane::Membrane(const MembraneSpec& s, double timeStep, double reserve)
         }
     if (single)
     {
+        dRowScratch.assign((size_t) (n + 1) * (size_t) (n + 1), 0.0);
+        accScratch.assign((size_t) n, 0.0);
         fX.assign(xs.begin(), xs.end());
         fY.assign(ys.begin(), ys.end());
     }
     else
     {
+        dRowScratch.assign((size_t) (n + 1) * (size_t) (n + 1), 0.0);
+        accScratch.assign((size_t) n, 0.0);
         dX = std::move(xs);
         dY = std::move(ys);
     }
@@ -192,6 +196,104 @@ SNARESIM_WIDE_VECTOR_CLONES void firstMoments(const Real* __restrict w, const Re
     sx = ax[0];
     sy = ay[0];
 }
+// Block sums of an n x n grid in two passes: each band of side rows added into one row of
+// `rows` (row length blocks * side, zero beyond n; vectorised, in the state's precision), then
+// each run of side values of `rows` summed, a block each (side a constant: vectorised too).
+// In double whatever the state: the microphones take second differences in time of these sums,
+// which would lift a float sum's rounding by 1 / (omega k)^2.
+template <class Real>
+SNARESIM_WIDE_VECTOR_CLONES void sumBands(const Real* __restrict w, int n, int side, double* __restrict rows)
+{
+    const int blocks = (n + side - 1) / side, width = blocks * side;
+    for (int by = 0; by < blocks; ++by)
+    {
+        double* acc = rows + (size_t) by * (size_t) width;
+        const int first = by * side, last = std::min(n, first + side);
+        const Real* row0 = w + (size_t) first * (size_t) n;
+        for (int ix = 0; ix < n; ++ix)
+            acc[ix] = (double) row0[ix];
+        std::fill(acc + n, acc + width, 0.0);
+        for (int iy = first + 1; iy < last; ++iy)
+        {
+            const Real* row = w + (size_t) iy * (size_t) n;
+            for (int ix = 0; ix < n; ++ix)
+                acc[ix] += (double) row[ix];
+        }
+    }
+}
+template <int Side>
+SNARESIM_WIDE_VECTOR_CLONES void sumRuns(const double* __restrict rows, int count, double* __restrict out)
+{
+    for (int b = 0; b < count; ++b)
+    {
+        double s = 0.0;
+        for (int c = 0; c < Side; ++c)
+            s += rows[b * Side + c];
+        out[b] = s;
+    }
+}
+template <class Real>
+void blockSums(const Real* w, int n, int side, double* rows, double* out)
+{
+    sumBands(w, n, side, rows);
+    const int blocks = (n + side - 1) / side, count = blocks * blocks;
+    switch (side)
+    {
+        case 1: sumRuns<1>(rows, count, out); return;
+        case 2: sumRuns<2>(rows, count, out); return;
+        case 3: sumRuns<3>(rows, count, out); return;
+        case 4: sumRuns<4>(rows, count, out); return;
+        case 5: sumRuns<5>(rows, count, out); return;
+        case 6: sumRuns<6>(rows, count, out); return;
+        case 7: sumRuns<7>(rows, count, out); return;
+        case 8: sumRuns<8>(rows, count, out); return;
+        default: break;
+    }
+    for (int b = 0; b < count; ++b)
+    {
+        double s = 0.0;
+        for (int c = 0; c < side; ++c)
+            s += rows[b * side + c];
+        out[b] = s;
+    }
+}
+// The rectangle's second differences in time summed over blocks, in double: a band of side
+// rows into acc (vectorised along the rows), then its runs.
+template <class Real>
+SNARESIM_WIDE_VECTOR_CLONES void blockSecondDifferences(const Real* __restrict next, const Real* __restrict now, const Real* __restrict prev,
+                                                        int n, int ix0, int iy0, int columns, int rows, int side,
+                                                        double* __restrict acc, double* __restrict out)
+{
+    if (side == 1) // a block a node
+    {
+        for (int iy = 0; iy < rows; ++iy)
+        {
+            const size_t o = (size_t) (iy0 + iy) * (size_t) n + (size_t) ix0;
+            double* row = out + (size_t) iy * (size_t) columns;
+            for (int ix = 0; ix < columns; ++ix)
+                row[ix] = ((double) next[o + ix] - 2.0 * (double) now[o + ix]) + (double) prev[o + ix];
+        }
+        return;
+    }
+    const int bxs = (columns + side - 1) / side, bys = (rows + side - 1) / side;
+    for (int by = 0; by < bys; ++by)
+    {
+        std::fill(acc, acc + columns, 0.0);
+        for (int iy = iy0 + by * side; iy < std::min(iy0 + rows, iy0 + (by + 1) * side); ++iy)
+        {
+            const size_t o = (size_t) iy * (size_t) n + (size_t) ix0;
+            for (int ix = 0; ix < columns; ++ix)
+                acc[ix] += ((double) next[o + ix] - 2.0 * (double) now[o + ix]) + (double) prev[o + ix];
+        }
+        for (int bx = 0; bx < bxs; ++bx)
+        {
+            double s = 0.0;
+            for (int ix = bx * side; ix < std::min(columns, (bx + 1) * side); ++ix)
+                s += acc[ix];
+            out[by * bxs + bx] = s;
+        }
+    }
+}
 } // namespace
 
 // Double: row by row over the disc's runs of interior nodes (nodes outside stay zero, the
@@ -239,6 +341,30 @@ std::array<double, 2> Membrane::tiltNext() const
     else
         firstMoments(wNext.data(), dX.data(), dY.data(), n * n, sx, sy);
     return { h * h * sx, h * h * sy };
+}
+
+void Membrane::blockVolumesNext(int side, double* out) const
+{
+    const int n = g.width();
+    const int blocks = (n + side - 1) / side;
+    if (single)
+        blockSums(fNext.data(), n, side, dRowScratch.data(), out);
+    else
+        blockSums(wNext.data(), n, side, dRowScratch.data(), out);
+    for (int b = 0; b < blocks * blocks; ++b)
+        out[b] *= h * h;
+}
+
+void Membrane::blockAccelerationsIn(int side, int ix0, int iy0, int columns, int rows, double* out) const
+{
+    const int n = g.width();
+    const int count = ((columns + side - 1) / side) * ((rows + side - 1) / side);
+    if (single)
+        blockSecondDifferences(fNext.data(), fNow.data(), fPrev.data(), n, ix0, iy0, columns, rows, side, accScratch.data(), out);
+    else
+        blockSecondDifferences(wNext.data(), wNow.data(), wPrev.data(), n, ix0, iy0, columns, rows, side, accScratch.data(), out);
+    for (int b = 0; b < count; ++b)
+        out[b] *= h * h;
 }
 
 void Membrane::applyForce(const GridDistribution& d, double force)

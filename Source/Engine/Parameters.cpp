@@ -61,9 +61,9 @@ constexpr std::array<ParameterSpec, kNumParameters> kSpecs {{
     { P::micBottom, "mic_bottom", "Bottom mic level", "", 0.0, 1.0, 0.3, S::linear, N::coefficients,
       "Level of the microphone under the snares in the mix", C, "", "output" },
     { P::micRoom, "mic_room", "Room level", "", 0.0, 1.0, 0.2, S::linear, N::coefficients,
-      "Level of the far-field (monopole) pressure in the mix", C, "", "output" },
+      "Level of the room microphone (mic_room_distance from the batter's centre) in the mix", C, "", "output" },
     { P::micTopPosition, "mic_top_position", "Top mic position", "r/R", 0.0, 0.9, 0.5, S::linear, N::coefficients,
-      "Distance of the top microphone's point from the centre, as a fraction of the radius", C, "", "output" },
+      "Distance of the top microphone from the drum's axis, as a fraction of the radius", C, "", "output" },
     { P::outputGain, "output_gain", "Output level", "dB", -48.0, 12.0, 0.0, S::linear, N::coefficients,
       "Output level", C, "", "output" },
     { P::gridCoarseness, "grid_coarseness", "Quality (grid coarseness)", "", 1.0, 4.0, 2.0, S::linear, N::newGrid,
@@ -78,11 +78,21 @@ constexpr std::array<ParameterSpec, kNumParameters> kSpecs {{
       "When the host renders offline (a bounce), the drum plays in the air box whatever the air model says; off: bounces play the air model. Read by the plug-in only: the renderer plays the air model",
       B, "off|on", "model" },
     { P::headPrecision, "head_precision", "Head arithmetic", "", 0.0, 1.0, 1.0, S::linear, N::newModel,
-      "The heads' state and update (eq. 22) in double precision, or in single: the heads a quarter to a third cheaper, the energy identity held to float round-off (BENCHMARKS.md); the air box always runs them in double",
+      "The batter's state and update (eq. 22) in double precision, or in single: the batter a quarter to a third cheaper, the energy identity held to float round-off (BENCHMARKS.md); the carry head, which the snares strike, and the air box's heads always run in double",
       K, "double|single", "model" },
     { P::outsideAir, "outside_air", "Outside air", "", 0.0, 1.0, 0.0, S::linear, N::newModel,
       "The air outside the drum with the cavity: its mass lowers the heads' lowest modes and it carries their sound away (radiation channels calibrated against the air box; the air box has its own)",
       B, "off|on", "heads" },
+    { P::micTopHeight, "mic_top_height", "Top mic height", "m", 0.01, 0.3, 0.04, S::linear, N::coefficients,
+      "Height of the top microphone above the batter head", C, "", "output" },
+    { P::micBottomPosition, "mic_bottom_position", "Bottom mic position", "r/R", 0.0, 0.9, 0.35, S::linear, N::coefficients,
+      "Distance of the bottom microphone from the drum's axis, as a fraction of the radius", C, "", "output" },
+    { P::micBottomHeight, "mic_bottom_height", "Bottom mic distance", "m", 0.01, 0.3, 0.04, S::linear, N::coefficients,
+      "Distance of the bottom microphone below the carry head", C, "", "output" },
+    { P::micRoomDistance, "mic_room_distance", "Room mic distance", "m", 0.3, 2.0, 1.0, S::linear, N::coefficients,
+      "Distance of the room microphone from the batter's centre", C, "", "output" },
+    { P::micRoomAngle, "mic_room_angle", "Room mic angle", "deg", 0.0, 90.0, 45.0, S::linear, N::coefficients,
+      "Angle of the room microphone from the drum's axis: 0 above the batter, 90 level with it", C, "", "output" },
 }};
 
 constexpr bool tableInOrder()
@@ -99,8 +109,8 @@ constexpr std::array<ParameterGroup, 6> kGroups {{
     { "heads", "Heads & shell" },
     { "snares", "Snares" },
     { "mallet", "Mallet & playing" },
-    { "output", "Microphones & output" },
     { "model", "Model" },
+    { "output", "Microphones & output" },
 }};
 
 constexpr bool everyParameterInAGroup()

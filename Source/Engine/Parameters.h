@@ -56,6 +56,12 @@ enum class ParamId : std::size_t
     headPrecision,
     // the outside air of the reduced model (appended likewise)
     outsideAir,
+    // where the microphones stand (appended likewise)
+    micTopHeight,
+    micBottomPosition,
+    micBottomHeight,
+    micRoomDistance,
+    micRoomAngle,
     count
 };
 

@@ -586,10 +586,11 @@ Output:
   -o, --output FILE     the WAV file to write: 32-bit float (required)
   --mic top|bottom|far|mix|all|air
                         the signal in the WAV (default mix; with --model airbox, air):
-                        top = batter velocity at the top microphone, bottom = carry-head
-                        velocity at the bottom (snare-side) microphone, far = far-field
-                        pressure (air box: the last air microphone), mix = their weighted
-                        mix (the plug-in's output); all = four channels in the order
+                        the sound pressure at the top microphone (above the batter),
+                        the bottom one (under the snares) and the room one (far), where
+                        the mic_* parameters put them (air box: the box's own pressure
+                        there unless --air-mic is given), mix = their weighted mix (the
+                        plug-in's output); all = four channels in the order
                         top, bottom, far, mix; air = the air box's microphones, one
                         channel each in order (pressure, 0.005 per Pa)
   --seconds S           length in seconds, 0 < S <= 3600 (default: 2; with --midi, the
@@ -625,8 +626,8 @@ Model:
                         than real time); sets air_model after the preset, before any --set
   --air-mic X,Y,Z       air box: a pressure microphone at X,Y,Z metres from the drum's
                         centre (z up, the batter at +depth/2); repeatable, up to 8, one
-                        WAV channel each. None given: a close top mic 4 cm above the
-                        batter near the rim, a bottom mic under the snares, a far one
+                        WAV channel each. None given: the drum's top, bottom and room
+                        mics (the mic_* parameters), each held a cell inside the box
   --walls absorbing|reflecting
                         air box: the box's walls (default absorbing; --lossless:
                         reflecting)

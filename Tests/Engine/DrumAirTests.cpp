@@ -167,16 +167,24 @@ TEST_CASE("the paper's section 5.2 in the air box: when the wires swing down and
     CHECK(box.swingLowest_ms > cavity.swingLowest_ms);
 }
 
-TEST_CASE("the air microphones hear the strike, and the defaults are a top, a bottom and a far mic inside the box", "[drum][airbox][mics]")
+TEST_CASE("the air microphones hear the strike, and the defaults are the drum's top, bottom and room mics inside the box", "[drum][airbox][mics]")
 {
     DrumConfig cfg = inAirBox(test::wholeDrum());
     Drum drum(cfg);
     REQUIRE(drum.numAirMics() == 3);
     const auto& box = drum.airBox();
     const double H = cfg.cavity.shellDepth_m;
+    // the drum's own microphones (MicSpec); the room mic, 1 m away, held inside the 0.6 m box
+    CHECK(box.micPoint(0).x_m == cfg.mics.top.x_m);
+    CHECK(box.micPoint(0).z_m == cfg.mics.top.z_m);
     CHECK(box.micPoint(0).z_m > 0.5 * H);  // above the batter
+    CHECK(box.micPoint(1).y_m == cfg.mics.bottom.y_m);
+    CHECK(box.micPoint(1).z_m == cfg.mics.bottom.z_m);
     CHECK(box.micPoint(1).z_m < -0.5 * H); // under the carry head
-    CHECK(std::hypot(box.micPoint(2).x_m, box.micPoint(2).z_m - 0.5 * H) == Approx(0.25).epsilon(0.05));
+    CHECK(box.micPoint(2).x_m > 0.25);
+    CHECK(box.micPoint(2).z_m > 0.25);
+    CHECK(box.micPoint(2).x_m < 0.3);
+    CHECK(box.micPoint(2).z_m < 0.3);
     drum.strike(3.0, 0.3, 0.0);
     double peak[3] = {};
     for (int n = 0; n < 600; ++n)
@@ -184,6 +192,8 @@ TEST_CASE("the air microphones hear the strike, and the defaults are a top, a bo
         drum.step();
         for (int i = 0; i < 3; ++i)
             peak[i] = std::max(peak[i], std::abs(drum.airMicPressure(i)));
+        CHECK(drum.lastSignals().top_Pa == drum.airMicPressure(0));
+        CHECK(drum.lastSignals().bottom_Pa == drum.airMicPressure(1));
         CHECK(drum.lastSignals().far_Pa == drum.airMicPressure(2));
     }
     std::printf("air mics, 3 m/s strike: peak |p| top %.3g Pa, bottom %.3g Pa, far %.3g Pa\n", peak[0], peak[1], peak[2]);

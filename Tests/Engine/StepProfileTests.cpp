@@ -38,7 +38,7 @@ std::vector<double> play(Drum& drum, int steps)
             drum.playNote(38, n == 0 ? 127 : 90);
         out.push_back(drum.step());
         const auto& s = drum.lastSignals();
-        out.insert(out.end(), { s.top_m_per_s, s.bottom_m_per_s, s.far_Pa, drum.energy().total(), drum.energy().balance() });
+        out.insert(out.end(), { s.top_Pa, s.bottom_Pa, s.far_Pa, drum.energy().total(), drum.energy().balance() });
         for (int i = 0; i < drum.numAirMics(); ++i)
             out.push_back(drum.airMicPressure(i));
     }

@@ -1,0 +1,324 @@
+#include "PressureMicrophones.h"
+
+#include "Membrane.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace snaresim
+{
+
+namespace
+{
+double distance(double x, double y, double z, const AirPoint& p)
+{
+    return std::sqrt((p.x_m - x) * (p.x_m - x) + (p.y_m - y) * (p.y_m - y) + (p.z_m - z) * (p.z_m - z));
+}
+
+// The mean of 1/R over a square cell of side w centred at (x, y, z), R to p: 1/r from the
+// centre when the cell is small beside r, else over a 6 x 6 raster.
+double meanInverseOver(double x, double y, double z, double w, double r, const AirPoint& p)
+{
+    if (r >= 2.0 * w)
+        return 1.0 / r;
+    double sum = 0.0;
+    for (int a = 0; a < 6; ++a)
+        for (int b = 0; b < 6; ++b)
+            sum += 1.0 / std::max(1e-4, distance(x + w * ((a + 0.5) / 6.0 - 0.5), y + w * ((b + 0.5) / 6.0 - 0.5), z, p));
+    return sum / 36.0;
+}
+
+// Kirchhoff's obliquity (1 + cos theta) / 2 blended in by `far` (0 near the head: 1).
+double obliquityAt(double r, double far, double z, const AirPoint& p) { return 1.0 - far * 0.5 * (1.0 - std::abs(p.z_m - z) / r); }
+} // namespace
+
+PressureMicrophones::PressureMicrophones(const DrumConfig& cfg, const Membrane& batter, const Membrane& carry)
+    : k(1.0 / cfg.sampleRate_Hz), radius(cfg.batter.radius_m), depth(cfg.cavity.shellDepth_m), nearWidths(2.0), rho(cfg.cavity.airDensity_kg_per_m3), c(cfg.cavity.soundSpeed_m_per_s),
+      alpha(1.0 - std::exp(-c / cfg.batter.radius_m / cfg.sampleRate_Hz))
+{
+    const double H = cfg.cavity.shellDepth_m;
+    const Membrane* membranes[2] = { &batter, &carry };
+    for (int hi = 0; hi < 2; ++hi)
+    {
+        Head& h = heads[(size_t) hi];
+        const CircularGrid& g = membranes[hi]->grid();
+        const int n = g.width();
+        h.z = hi == 0 ? 0.5 * H : -0.5 * H;
+        h.grid = &g;
+        h.sign = hi == 0 ? 1.0 : -1.0;
+        h.side = std::max(1, (int) std::lround(cfg.mics.cellSize_m / g.spacing()));
+        const int blocks = (n + h.side - 1) / h.side;
+        h.width_m = h.side * g.spacing();
+        h.blockVolume.assign((size_t) (blocks * blocks), 0.0);
+        for (int by = 0; by < blocks; ++by)
+            for (int bx = 0; bx < blocks; ++bx)
+            {
+                double sx = 0.0, sy = 0.0;
+                int count = 0;
+                for (int iy = by * h.side; iy < std::min(n, (by + 1) * h.side); ++iy)
+                    for (int ix = bx * h.side; ix < std::min(n, (bx + 1) * h.side); ++ix)
+                        if (g.mask()[(size_t) g.index(ix, iy)] > 0.5)
+                        {
+                            sx += g.x(ix);
+                            sy += g.x(iy);
+                            ++count;
+                        }
+                if (count == 0)
+                    continue;
+                h.block.push_back(by * blocks + bx);
+                h.cx.push_back(sx / count);
+                h.cy.push_back(sy / count);
+            }
+        h.cells = (int) h.block.size();
+        h.blocks = blocks;
+        h.fine = std::clamp((int) std::lround(cfg.mics.fineCellSize_m / g.spacing()), 1, h.side);
+        h.vNow.assign((size_t) h.cells, 0.0);
+        h.vPrev = h.vNow;
+        h.accel.assign((size_t) h.cells + 1, 0.0);
+    }
+    constexpr double deepest = 1.0; // DrumConfig::validate's deepest shell, for a depth changed later
+    const double farthest = cfg.mics.reach_m + std::hypot(cfg.batter.radius_m, 0.5 * deepest) + deepest;
+    const int longest = (int) std::ceil(farthest / (c * k)) + 2;
+    rows = 1;
+    while (rows < longest)
+        rows *= 2;
+    const size_t most = (size_t) std::max(heads[0].cells, heads[1].cells);
+    // the most fine cells a microphone can hear: a square of 2 nearWidths + 2 coarse cells
+    size_t nearMost = 0;
+    for (const Head& h : heads)
+    {
+        const int span = ((int) (2.0 * nearWidths) + 2) * h.side / h.fine + 1;
+        nearMost = std::max(nearMost, (size_t) span * (size_t) span);
+    }
+    for (Listener& l : mics)
+    {
+        l.sources.resize(most + 1 + nearMost);
+        l.cell.resize(most + nearMost);
+        l.now.resize(most + nearMost);
+        l.next.resize(most + nearMost);
+        l.taps.resize(most + nearMost);
+        l.tapCell.resize(most + nearMost);
+        l.runEnd.resize((size_t) rows);
+        l.count.resize((size_t) rows);
+        l.direct.assign((size_t) rows, 0.0);
+        l.around.assign((size_t) rows, 0.0);
+    }
+    setPositions(cfg.mics, H);
+}
+
+PressureMicrophones::Tap PressureMicrophones::tapAt(double r, double gain) const noexcept
+{
+    const double t = std::clamp(r / (c * k), 0.0, rows - 2.0);
+    const int d = (int) t;
+    return Tap { d, t - d, gain };
+}
+
+void PressureMicrophones::place(Listener& l, const AirPoint& p) noexcept
+{
+    l.facing = p.z_m >= 0.0 ? 0 : 1;
+    const Head& f = heads[(size_t) l.facing];
+    const double w = f.width_m;
+    // Near the head (closer to its centre than its radius) the head is its own baffle; far from
+    // it the drum is a finite body, whose faces radiate with Kirchhoff's obliquity (1 + cos)/2.
+    const double far = std::clamp(distance(0.0, 0.0, f.z, p) / radius - 1.0, 0.0, 1.0);
+    // The near rectangle: the coarse blocks within nearWidths of the foot, when the microphone is
+    // within three cells of the head's plane.
+    const CircularGrid& g = *f.grid;
+    const double h = g.spacing();
+    int bx0 = 1, bx1 = 0, by0 = 1, by1 = 0; // empty
+    if (std::abs(p.z_m - f.z) < 3.0 * w)
+    {
+        const double fx = p.x_m / h - g.x(0) / h, fy = p.y_m / h - g.x(0) / h; // the foot in node units
+        const double reach = nearWidths * f.side;
+        bx0 = std::max(0, (int) std::floor((fx - reach) / f.side));
+        bx1 = std::min(f.blocks - 1, (int) std::floor((fx + reach) / f.side));
+        by0 = std::max(0, (int) std::floor((fy - reach) / f.side));
+        by1 = std::min(f.blocks - 1, (int) std::floor((fy + reach) / f.side));
+    }
+    l.nearX = bx0 * f.side;
+    l.nearY = by0 * f.side;
+    l.nearColumns = bx1 >= bx0 ? std::min(g.width(), (bx1 + 1) * f.side) - l.nearX : 0;
+    l.nearRows = by1 >= by0 ? std::min(g.width(), (by1 + 1) * f.side) - l.nearY : 0;
+    const int fineColumns = (l.nearColumns + f.fine - 1) / f.fine, fineRows = (l.nearRows + f.fine - 1) / f.fine;
+    l.nearCells = fineColumns * fineRows;
+    if ((size_t) (f.cells + 1 + l.nearCells) > l.sources.size()) // cannot happen (the capacity is the largest square)
+        l.nearCells = 0, l.nearColumns = l.nearRows = 0, bx1 = bx0 - 1;
+    int lo = rows, hi = 0;
+    int cellTaps = 0;
+    auto add = [&](const Tap& t, int source) {
+        l.taps[(size_t) cellTaps] = t;
+        l.tapCell[(size_t) cellTaps] = source;
+        ++cellTaps;
+        lo = std::min(lo, t.delay);
+        hi = std::max(hi, t.delay);
+    };
+    const double fw = f.fine * h;
+    for (int cy = 0; cy < fineRows; ++cy)
+        for (int cx = 0; cx < fineColumns; ++cx)
+        {
+            double sx = 0.0, sy = 0.0;
+            int count = 0;
+            for (int iy = l.nearY + cy * f.fine; iy < std::min(l.nearY + l.nearRows, l.nearY + (cy + 1) * f.fine); ++iy)
+                for (int ix = l.nearX + cx * f.fine; ix < std::min(l.nearX + l.nearColumns, l.nearX + (cx + 1) * f.fine); ++ix)
+                    if (g.mask()[(size_t) g.index(ix, iy)] > 0.5)
+                    {
+                        sx += g.x(ix);
+                        sy += g.x(iy);
+                        ++count;
+                    }
+            if (count == 0)
+                continue;
+            const double x = sx / count, y = sy / count;
+            const double r = std::max(1e-3, distance(x, y, f.z, p));
+            add(tapAt(r, rho / (2.0 * std::numbers::pi) * meanInverseOver(x, y, f.z, fw, r, p) * obliquityAt(r, far, f.z, p) * f.sign),
+                f.cells + 1 + cy * fineColumns + cx);
+        }
+
+    for (int j = 0; j < f.cells; ++j)
+    {
+        const int bx = f.block[(size_t) j] % f.blocks, by = f.block[(size_t) j] / f.blocks;
+        if (bx >= bx0 && bx <= bx1 && by >= by0 && by <= by1)
+            continue; // heard in fine cells
+        const double cx = f.cx[(size_t) j], cy = f.cy[(size_t) j];
+        const double r = std::max(1e-3, distance(cx, cy, f.z, p));
+        add(tapAt(r, rho / (2.0 * std::numbers::pi) * meanInverseOver(cx, cy, f.z, w, r, p) * obliquityAt(r, far, f.z, p)), j);
+    }
+    // counting sort of the taps by their whole delays
+    l.firstDelay = cellTaps > 0 ? lo : 0;
+    l.delays = cellTaps > 0 ? hi - lo + 1 : 0;
+    std::fill(l.count.begin(), l.count.begin() + l.delays, 0);
+    for (int j = 0; j < cellTaps; ++j)
+        ++l.count[(size_t) (l.taps[(size_t) j].delay - lo)];
+    int end = 0;
+    for (int d = 0; d < l.delays; ++d)
+    {
+        end += l.count[(size_t) d];
+        l.runEnd[(size_t) d] = end;
+        l.count[(size_t) d] = end - l.count[(size_t) d]; // the run's next free slot
+    }
+    for (int j = 0; j < cellTaps; ++j)
+    {
+        const Tap& t = l.taps[(size_t) j];
+        const int slot = l.count[(size_t) (t.delay - lo)]++;
+        l.cell[(size_t) slot] = l.tapCell[(size_t) j];
+        l.now[(size_t) slot] = t.gain * (1.0 - t.frac);
+        l.next[(size_t) slot] = t.gain * t.frac;
+    }
+
+    // The whole-head terms come from the rim (the edge the baffle lacks): the mean of 1/d over
+    // its points, d from the facing head's rim to the microphone, plus the shell's depth for the
+    // other head's sound, which comes round the shell.
+    constexpr int rimPoints = 32;
+    double inverse = 0.0, inverseAround = 0.0, mean = 0.0;
+    for (int j = 0; j < rimPoints; ++j)
+    {
+        const double phi = 2.0 * std::numbers::pi * (j + 0.5) / rimPoints;
+        const double d = std::max(1e-3, distance(radius * std::cos(phi), radius * std::sin(phi), f.z, p));
+        inverse += 1.0 / d;
+        inverseAround += 1.0 / (d + depth);
+        mean += d;
+    }
+    inverse /= rimPoints;
+    inverseAround /= rimPoints;
+    mean /= rimPoints;
+    l.facingWhole = tapAt(mean, -rho / (4.0 * std::numbers::pi) * inverse);
+    l.otherWhole = tapAt(mean + depth, rho / (4.0 * std::numbers::pi) * inverseAround);
+}
+
+void PressureMicrophones::setPositions(const MicSpec& m, double shellDepth) noexcept
+{
+    depth = shellDepth;
+    heads[0].z = 0.5 * shellDepth;
+    heads[1].z = -0.5 * shellDepth;
+    place(mics[top], m.top);
+    place(mics[bottom], m.bottom);
+    place(mics[room], m.room);
+}
+
+void PressureMicrophones::push(std::vector<double>& ring, const Tap& t, double value) const noexcept
+{
+    const size_t mask = (size_t) rows - 1;
+    ring[((size_t) pos + (size_t) t.delay) & mask] += t.gain * (1.0 - t.frac) * value;
+    ring[((size_t) pos + (size_t) t.delay + 1) & mask] += t.gain * t.frac * value;
+}
+
+void PressureMicrophones::listen(const Membrane& batter, const Membrane& carry) noexcept
+{
+    const Membrane* membranes[2] = { &batter, &carry };
+    const double inverseKk = 1.0 / (k * k);
+    for (int hi = 0; hi < 2; ++hi)
+    {
+        Head& h = heads[(size_t) hi];
+        membranes[hi]->blockVolumesNext(h.side, h.blockVolume.data());
+        double whole = 0.0;
+        for (int j = 0; j < h.cells; ++j)
+        {
+            const double v = h.sign * h.blockVolume[(size_t) h.block[(size_t) j]];
+            const double a = (v - 2.0 * h.vNow[(size_t) j] + h.vPrev[(size_t) j]) * inverseKk; // A^n
+            h.vPrev[(size_t) j] = h.vNow[(size_t) j];
+            h.vNow[(size_t) j] = v;
+            h.accel[(size_t) j] = a;
+            whole += a;
+        }
+        h.accel[(size_t) h.cells] = whole;
+    }
+    const size_t mask = (size_t) rows - 1;
+    for (int m = 0; m < numMics; ++m)
+    {
+        Listener& l = mics[(size_t) m];
+        const Head& f = heads[(size_t) l.facing];
+        // the sources: the facing head's cells and whole, then the fine cells near the microphone
+        double* A = l.sources.data();
+        std::copy(f.accel.begin(), f.accel.end(), A);
+        if (l.nearCells > 0)
+        {
+            double* fine = A + f.cells + 1;
+            membranes[l.facing]->blockAccelerationsIn(f.fine, l.nearX, l.nearY, l.nearColumns, l.nearRows, fine);
+            for (int i = 0; i < l.nearCells; ++i)
+                fine[i] *= inverseKk;
+        }
+        int t = 0;
+        for (int d = 0; d < l.delays; ++d)
+        {
+            double s0 = 0.0, s1 = 0.0;
+            for (const int end = l.runEnd[(size_t) d]; t < end; ++t)
+            {
+                const double a = A[l.cell[(size_t) t]];
+                s0 += l.now[(size_t) t] * a;
+                s1 += l.next[(size_t) t] * a;
+            }
+            const size_t slot = (size_t) pos + (size_t) (l.firstDelay + d);
+            l.direct[slot & mask] += s0;
+            l.direct[(slot + 1) & mask] += s1;
+        }
+        push(l.around, l.facingWhole, A[f.cells]);
+        const Head& o = heads[(size_t) (1 - l.facing)];
+        push(l.around, l.otherWhole, o.accel[(size_t) o.cells]);
+        const size_t here = (size_t) pos & mask;
+        const double p = l.direct[here], x = l.around[here];
+        l.direct[here] = l.around[here] = 0.0;
+        l.lowPass += alpha * (x - l.lowPass);
+        out[(size_t) m] = p + l.lowPass;
+    }
+    pos = (pos + 1) & (rows - 1);
+}
+
+void PressureMicrophones::clear() noexcept
+{
+    for (Head& h : heads)
+    {
+        std::fill(h.vNow.begin(), h.vNow.end(), 0.0);
+        std::fill(h.vPrev.begin(), h.vPrev.end(), 0.0);
+        std::fill(h.accel.begin(), h.accel.end(), 0.0);
+    }
+    for (Listener& l : mics)
+    {
+        std::fill(l.direct.begin(), l.direct.end(), 0.0);
+        std::fill(l.around.begin(), l.around.end(), 0.0);
+        l.lowPass = 0.0;
+    }
+    out.fill(0.0);
+}
+
+} // namespace snaresim

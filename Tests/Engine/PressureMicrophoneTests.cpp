@@ -1,0 +1,152 @@
+// The pressure microphones (PressureMicrophones.h) against the air box's pressure at the same
+// points: octave-band levels of the first 300 ms after a strike.
+#include "Drum.h"
+#include "TestDrums.h"
+
+#include <catch2/catch.hpp>
+#include <unsupported/Eigen/FFT>
+
+#include <array>
+#include <cmath>
+#include <complex>
+#include <cstdio>
+#include <vector>
+
+using namespace snaresim;
+
+namespace
+{
+constexpr std::array<double, 6> kOctaves { 125.0, 250.0, 500.0, 1000.0, 2000.0, 4000.0 };
+using Levels = std::array<double, kOctaves.size()>;
+
+// Energy of x in each octave band (edges f / sqrt 2, f sqrt 2), in dB (Parseval on the whole
+// record, zero-padded to a power of two).
+Levels octaveLevels(const std::vector<double>& x, double fs)
+{
+    size_t n = 1;
+    while (n < 2 * x.size())
+        n *= 2;
+    std::vector<double> padded(n, 0.0);
+    std::copy(x.begin(), x.end(), padded.begin());
+    Eigen::FFT<double> fft;
+    std::vector<std::complex<double>> X;
+    fft.fwd(X, padded);
+    Levels out {};
+    for (size_t b = 0; b < kOctaves.size(); ++b)
+    {
+        const double lo = kOctaves[b] / std::sqrt(2.0), hi = kOctaves[b] * std::sqrt(2.0);
+        double e = 1e-300;
+        for (size_t i = (size_t) std::ceil(lo * (double) n / fs); i <= (size_t) (hi * (double) n / fs); ++i)
+            e += std::norm(X[i]);
+        out[b] = 10.0 * std::log10(e);
+    }
+    return out;
+}
+
+struct Recording
+{
+    std::array<std::vector<double>, 3> drum;  // the drum's microphones (MicSignals)
+    std::array<std::vector<double>, 3> model; // PressureMicrophones on the drum's own heads
+    std::array<std::vector<double>, 3> plane; // rho_a c times the head's velocity under each microphone
+};
+
+Recording record(const DrumConfig& cfg, int samples)
+{
+    Drum drum(cfg);
+    drum.strike(3.0, 0.3, 0.0);
+    Recording r;
+    // the point of the facing head under each microphone (the room mic's: the batter's nearest)
+    const double R = cfg.batter.radius_m, rhoC = cfg.cavity.airDensity_kg_per_m3 * cfg.cavity.soundSpeed_m_per_s;
+    std::array<GridDistribution, 3> under;
+    const AirPoint* points[3] = { &cfg.mics.top, &cfg.mics.bottom, &cfg.mics.room };
+    for (int m = 0; m < 3; ++m)
+    {
+        const Membrane& head = m == 1 ? drum.carry() : drum.batter();
+        double x = points[m]->x_m, y = points[m]->y_m;
+        const double r = std::hypot(x, y);
+        if (r > 0.9 * R)
+            x *= 0.9 * R / r, y *= 0.9 * R / r;
+        under[(size_t) m].reserve(4);
+        head.grid().makeDistribution(x, y, 0.0, under[(size_t) m]);
+    }
+    for (int n = 0; n < samples; ++n)
+    {
+        drum.step();
+        const MicSignals& s = drum.lastSignals();
+        r.drum[0].push_back(s.top_Pa);
+        r.drum[1].push_back(s.bottom_Pa);
+        r.drum[2].push_back(s.far_Pa);
+        for (int m = 0; m < 3; ++m)
+        {
+            r.model[(size_t) m].push_back(drum.microphones().pressure((PressureMicrophones::Position) m));
+            const Membrane& head = m == 1 ? drum.carry() : drum.batter();
+            const double v = (head.sampleNext(under[(size_t) m]) - head.sampleNow(under[(size_t) m])) * cfg.sampleRate_Hz;
+            r.plane[(size_t) m].push_back((m == 1 ? -rhoC : rhoC) * v);
+        }
+    }
+    return r;
+}
+
+// The test drum: snares off (no chaos: one render stands for all), a room mic 0.35 m from the
+// batter's centre at 45 degrees, inside a 1.3 m box with absorbing walls (a smaller box's walls
+// move the room mic's lowest band by a decibel or more).
+DrumConfig micDrum()
+{
+    DrumConfig cfg = test::wholeDrum();
+    cfg.snares.engaged = false;
+    const double H = cfg.cavity.shellDepth_m, d = 0.35;
+    cfg.mics.room = { d * std::sqrt(0.5), 0.0, 0.5 * H + d * std::sqrt(0.5) };
+    return cfg;
+}
+
+DrumConfig inBox(DrumConfig cfg)
+{
+    cfg.cavity.model = AirModel::airbox;
+    cfg.air.walls = AirWalls::absorbing;
+    cfg.air.size_m = { 1.3, 1.3, 1.3 };
+    cfg.air.threads = 2;
+    return cfg;
+}
+
+const char* const kNames[3] = { "top", "bottom", "room" };
+
+// Largest |level difference| over the bands, each band printed.
+double worstDifference(const char* what, const std::array<std::vector<double>, 3>& a, const std::array<std::vector<double>, 3>& b,
+                       double fs)
+{
+    double worst = 0.0;
+    for (int m = 0; m < 3; ++m)
+    {
+        const Levels la = octaveLevels(a[(size_t) m], fs), lb = octaveLevels(b[(size_t) m], fs);
+        std::printf("%s, %s mic, dB against the air box:", what, kNames[m]);
+        for (size_t i = 0; i < la.size(); ++i)
+        {
+            std::printf(" %+.1f", la[i] - lb[i]);
+            worst = std::max(worst, std::abs(la[i] - lb[i]));
+        }
+        std::printf("\n");
+    }
+    return worst;
+}
+} // namespace
+
+TEST_CASE("pressure microphones: octave bands 125 Hz - 4 kHz within 3 dB of the air box's pressure", "[mics][airbox]")
+{
+    // The same heads' motion heard two ways: the air box's own pressure at the microphones and
+    // the radiation model on the box's heads. The box's heads stand in for the real-time ones
+    // here: the reduced cavity moves the heads otherwise above 500 Hz (printed below, and
+    // docs/MODEL.md), which is the cavity's part, not the microphones'.
+    const DrumConfig cfg = micDrum();
+    const double fs = cfg.sampleRate_Hz;
+    const int samples = (int) std::lround(0.3 * fs);
+    const Recording box = record(inBox(cfg), samples);
+    CHECK(worstDifference("radiation model on the box's heads", box.model, box.drum, fs) < 3.0);
+    // The check can fail: a head's velocity under the microphone as a plane wave's pressure
+    // (the microphones before the radiation model) is far from it.
+    CHECK(worstDifference("rho c v under the microphone", box.plane, box.drum, fs) > 6.0);
+
+    DrumConfig realTime = cfg;
+    realTime.outside.enabled = true;
+    const Recording rt = record(realTime, samples);
+    worstDifference("the real-time drum (cavity and outside air)", rt.drum, box.drum, fs);
+}
