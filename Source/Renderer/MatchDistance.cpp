@@ -13,8 +13,9 @@ constexpr double kCentroidScale_octaves = 1.0 / 3.0;
 constexpr double kShareFloor = 0.001;        // shares below 0.1 % count as 0.1 % (-30 dB)
 constexpr double kShareScale_dB = 3.0;
 const double kFallScale = std::log(1.25);
-constexpr double kPeakScale_semitones = 1.0;
+constexpr double kPeakScale_semitones = 0.25;
 constexpr double kPeakClip = 4.0;
+constexpr double kSpectrumScale_dB = 2.0;
 constexpr double kEnvelopeScale_dB = 6.0;
 constexpr double kMissing = 4.0;             // a feature one signal has and the other not
 
@@ -25,6 +26,17 @@ double ratioTerm(std::optional<double> value, std::optional<double> reference, d
     if (! value || ! reference || *value <= 0.0 || *reference <= 0.0)
         return kMissing;
     return std::log(*value / *reference) / scale;
+}
+
+// Semitones from a peak to the nearest of others (kMissing when there is none).
+double nearestPeak_semitones(std::optional<double> peak, const std::vector<std::pair<double, double>>& others)
+{
+    if (! peak || others.empty())
+        return kMissing;
+    double nearest = 1e300;
+    for (const auto& other : others)
+        nearest = std::min(nearest, std::abs(12.0 * std::log2(other.first / *peak)));
+    return nearest;
 }
 
 } // namespace
@@ -59,9 +71,14 @@ MatchDistance matchDistance(const StrikeSignature& recording, const StrikeSignat
     d.z[2] = std::log(within(c.fall20_ms) / within(r.fall20_ms)) / kFallScale;
     d.z[3] = std::log(within(c.fall40_ms) / within(r.fall40_ms)) / kFallScale;
 
-    d.z[4] = std::clamp(ratioTerm(c.lowestPeak_Hz, r.lowestPeak_Hz, kPeakScale_semitones * std::log(2.0) / 12.0), -kPeakClip, kPeakClip);
+    if (c.lowestPeak_Hz || r.lowestPeak_Hz)
+    {
+        const double semitones = 0.5 * (nearestPeak_semitones(c.lowestPeak_Hz, r.peaks) + nearestPeak_semitones(r.lowestPeak_Hz, c.peaks));
+        d.z[4] = kPeakClip * std::tanh(semitones / (kPeakClip * kPeakScale_semitones));
+    }
 
-    d.z[5] = envelopeDistance_dB(recording.envelope, candidate.envelope) / kEnvelopeScale_dB;
+    d.z[5] = spectrumDistance_dB(recording.envelope, candidate.envelope) / kSpectrumScale_dB;
+    d.z[6] = envelopeDistance_dB(recording.envelope, candidate.envelope) / kEnvelopeScale_dB;
 
     double weighted = 0.0, weights = 0.0;
     for (std::size_t i = 0; i < d.z.size(); ++i)

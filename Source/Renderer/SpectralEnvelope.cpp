@@ -72,4 +72,17 @@ double envelopeDistance_dB(const SpectralEnvelope& a, const SpectralEnvelope& b)
     return std::sqrt(sum / (double) a.level_dB.size());
 }
 
+double spectrumDistance_dB(const SpectralEnvelope& a, const SpectralEnvelope& b)
+{
+    double sum = 0.0;
+    for (int band = 0; band < SpectralEnvelope::kBands; ++band)
+    {
+        double mean = 0.0;
+        for (int t = 0; t < SpectralEnvelope::kFrames; ++t)
+            mean += (a.at(t, band) - b.at(t, band)) / SpectralEnvelope::kFrames;
+        sum += mean * mean;
+    }
+    return std::sqrt(sum / SpectralEnvelope::kBands);
+}
+
 } // namespace snaresim::render

@@ -164,7 +164,8 @@ StrikeFeatures measureStrike(std::span<const double> samples, double rate, Strik
             f.bandShares[b] = total > 0.0 ? sums[b] / total : 0.0;
     }
 
-    // The lowest strong peak of the first 500 ms (Hann, zero-padded to 4x or more).
+    // The lowest strong peak of the first 500 ms (Hann, zero-padded to 4x or more), and the
+    // other peaks down to 24 dB.
     if (auto part = segment(0.0, 0.500); part.size() >= 2)
     {
         const auto w = hanning(part.size());
@@ -184,7 +185,7 @@ StrikeFeatures measureStrike(std::span<const double> samples, double rate, Strik
         const long reach = std::max(1L, roundEven(20.0 / binWidth));
         for (std::size_t k = 1; k + 1 < db.size(); ++k)
         {
-            if ((double) k * binWidth < 40.0 || db[k] < strongest - 12.0)
+            if ((double) k * binWidth < 40.0 || db[k] < strongest - 24.0)
                 continue;
             // The largest within +-reach bins (the edges extended, as scipy's 'nearest').
             bool local = true;
@@ -194,8 +195,10 @@ StrikeFeatures measureStrike(std::span<const double> samples, double rate, Strik
                 continue;
             const double a = db[k - 1], b = db[k], c = db[k + 1];
             const double den = a - 2.0 * b + c;
-            f.lowestPeak_Hz = ((double) k + (den != 0.0 ? 0.5 * (a - c) / den : 0.0)) * binWidth;
-            break;
+            const double hz = ((double) k + (den != 0.0 ? 0.5 * (a - c) / den : 0.0)) * binWidth;
+            f.peaks.emplace_back(hz, db[k] - strongest);
+            if (! f.lowestPeak_Hz && db[k] >= strongest - 12.0)
+                f.lowestPeak_Hz = hz;
         }
     }
     return f;

@@ -12,6 +12,8 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 namespace snaresim::render
 {
@@ -36,6 +38,11 @@ struct StrikeFeatures
     std::optional<double> fall20_ms;           // empty when the samples end first
     std::optional<double> fall40_ms;
     std::optional<double> lowestPeak_Hz;       // empty when no peak qualifies
+    // Every peak of that spectrum found as the lowest strong peak is, but down to 24 dB below
+    // the largest value: (Hz, dB relative to it), lowest first. --match compares each strike's
+    // lowest strong peak with the other's peaks, so that a mode just above 12 dB down in one
+    // and just below in the other still counts as the same mode.
+    std::vector<std::pair<double, double>> peaks;
 
     double onset_s() const { return (double) onset / sampleRate_Hz; }
 };
