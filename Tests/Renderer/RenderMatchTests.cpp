@@ -13,8 +13,10 @@
 
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <fstream>
 #include <numbers>
+#include <thread>
 
 using namespace rendertest;
 
@@ -226,4 +228,30 @@ TEST_CASE("match: the membrane and snare tensions of a SnareSim strike recovered
         CHECK(render.exitCode == 0);
         CHECK(entries(dir.out()) == std::vector<std::string> { "again.wav", "match.snarepreset" });
     }
+}
+
+TEST_CASE("match: interrupted, it leaves no preset file and an older one intact", "[renderer][match][errors]")
+{
+    TempDir dir;
+    const auto recording = matchInput(dir, "strike.wav", syntheticStrike(48000.0, 1.0)).string();
+    const auto target = dir.out() / "m.snarepreset";
+    std::ofstream(target) << "name = Older\n";
+
+    const auto capture = dir.root() / "capture";
+    const int pid = startRenderer({ "--match", recording, "-o", target.string(), "--match-budget", "100000", "--json" }, capture);
+    // Wait until it is searching (its temporary exists beside the old file), then stop it.
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (entries(dir.out()).size() < 2 && std::chrono::steady_clock::now() < deadline)
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    CHECK(entries(dir.out()).size() == 2);
+    std::this_thread::sleep_for(std::chrono::milliseconds(300)); // some renders under way
+    ::kill(pid, SIGINT);
+
+    const auto run = waitForRenderer(pid, capture);
+    INFO("stderr: " << run.err);
+    CHECK(run.exitCode == 128 + SIGINT);
+    CHECK(lines(run.err).size() == 1);
+    CHECK(run.out.empty());
+    CHECK(entries(dir.out()) == std::vector<std::string> { "m.snarepreset" });
+    CHECK(readText(target) == "name = Older\n");
 }
