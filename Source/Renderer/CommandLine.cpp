@@ -762,6 +762,7 @@ Matching a recording:
                         Default: batter_tension, carry_tension, damping, high_damping,
                         snare_tension, snare_count, strike_position, mallet_mass,
                         mallet_stiffness, mic_top, mic_bottom, mic_room, velocity
+                        (with --set snares_engaged=off, not the two snare ones)
   --match-budget N      renders the match may use, 12..100000 (default )" + std::to_string(kDefaultMatchBudget) + R"()
 )" + presetLine() + R"(
 Exit status: 0 success, 2 bad input or unwritable output (one line on stderr starting

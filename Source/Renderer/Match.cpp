@@ -432,7 +432,11 @@ int runMatch(const RenderJob& job)
         {
             const auto comma = rest.find(',');
             const auto key = rest.substr(0, comma);
-            coordinates.push_back({ key == "velocity" ? std::nullopt : findParameter(key) });
+            const MatchCoordinate coordinate { key == "velocity" ? std::nullopt : findParameter(key) };
+            // With the snares off (--set snares_engaged=off) their tension and count change nothing.
+            const bool snaresOnly = coordinate.id == ParamId::snareTension || coordinate.id == ParamId::snareCount;
+            if (! snaresOnly || start.get(ParamId::snaresEngaged) != 0.0)
+                coordinates.push_back(coordinate);
             rest = comma == std::string_view::npos ? std::string_view {} : rest.substr(comma + 1);
         }
     }

@@ -20,7 +20,8 @@ inline constexpr double kMatchSeconds = 0.6;
 inline constexpr int kMatchFixedVelocity = 100; // when velocity is not searched
 inline constexpr int kMatchFinalists = 3;       // re-rendered at velocity -4 and +4 at the end
 
-// The default --match-params (velocity: the strike's MIDI velocity, searched with them).
+// The default --match-params (velocity: the strike's MIDI velocity, searched with them); with
+// the snares off at the start, snare_tension and snare_count are left out.
 std::string defaultMatchParams();
 
 // Runs the match; prints the progress on stderr (not with --json) and the result on stdout.

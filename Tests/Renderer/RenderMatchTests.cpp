@@ -255,3 +255,28 @@ TEST_CASE("match: interrupted, it leaves no preset file and an older one intact"
     CHECK(entries(dir.out()) == std::vector<std::string> { "m.snarepreset" });
     CHECK(readText(target) == "name = Older\n");
 }
+
+TEST_CASE("match: the default parameters searched, without the snare ones when the snares are off", "[renderer][match]")
+{
+    TempDir dir;
+    const auto recording = matchInput(dir, "strike.wav", syntheticStrike(48000.0, 1.0)).string();
+    for (const bool snaresOff : { false, true })
+    {
+        std::vector<std::string> args { "--match", recording, "-o", (dir.out() / "m.snarepreset").string(), "--match-budget", "12", "--json" };
+        if (snaresOff)
+            args.insert(args.end(), { "--set", "snares_engaged=off" });
+        const auto run = runRenderer(args, dir.root() / "capture");
+        REQUIRE(run.exitCode == 0);
+        const auto json = parseJson(run.out);
+        juce::StringArray matched;
+        for (const auto& id : *json["matched"].getArray())
+            matched.add(id.toString());
+        INFO(matched.joinIntoString(","));
+        CHECK(matched.size() == (snaresOff ? 11 : 13));
+        CHECK(matched.contains("snare_tension") == ! snaresOff);
+        CHECK(matched.contains("snare_count") == ! snaresOff);
+        CHECK(matched.contains("velocity"));
+        CHECK((int) json["renders"] <= 12);
+        CHECK(parameterOf(json, "snares_engaged") == (snaresOff ? 0.0 : 1.0));
+    }
+}
