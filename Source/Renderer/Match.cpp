@@ -16,6 +16,7 @@
 #include <juce_core/juce_core.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -218,7 +219,7 @@ public:
         return evaluateCandidates(candidates);
     }
 
-    // The distances of candidates: cached ones at once, the others rendered `threads` at a time.
+    // The distances of candidates: cached ones at once, the others rendered on every core.
     std::vector<double> evaluateCandidates(const std::vector<Candidate>& candidates)
     {
         std::vector<std::vector<double>> keys;
@@ -229,20 +230,29 @@ public:
             if (! cache.count(keys.back()) && std::none_of(todo.begin(), todo.end(), [&](std::size_t j) { return keys[j] == keys.back(); }))
                 todo.push_back(i);
         }
-        for (std::size_t first = 0; first < todo.size(); first += (std::size_t) threads)
+        // In chunks of a few per thread, each thread taking the next candidate when it is free
+        // (a drum with 40 wires takes longer than one with 5); the progress after each chunk.
+        const std::size_t chunk = 4 * (std::size_t) threads;
+        for (std::size_t first = 0; first < todo.size(); first += chunk)
         {
             throwIfInterrupted();
-            const std::size_t last = std::min(todo.size(), first + (std::size_t) threads);
-            std::vector<std::future<Evaluation>> running;
-            for (std::size_t j = first; j < last; ++j)
-                running.push_back(std::async(std::launch::async, evaluateCandidate, candidates[todo[j]], rate, std::cref(recording)));
+            const std::size_t last = std::min(todo.size(), first + chunk);
+            std::vector<Evaluation> results(last - first);
+            std::atomic<std::size_t> next { first };
+            auto work = [&] {
+                for (std::size_t j; (j = next++) < last;)
+                    results[j - first] = evaluateCandidate(candidates[todo[j]], rate, recording);
+            };
+            std::vector<std::future<void>> workers;
+            for (std::size_t t = 0; t < std::min<std::size_t>((std::size_t) threads, last - first); ++t)
+                workers.push_back(std::async(std::launch::async, work));
+            for (auto& worker : workers)
+                worker.get(); // an interruption comes out here
             for (std::size_t j = first; j < last; ++j)
             {
-                auto e = running[j - first].get();
                 ++renders;
-                if (e.distance < best)
-                    best = e.distance;
-                cache.emplace(keys[todo[j]], std::move(e));
+                best = std::min(best, results[j - first].distance);
+                cache.emplace(keys[todo[j]], std::move(results[j - first]));
             }
             progress.update(renders, best);
         }
