@@ -584,6 +584,8 @@ CommandLine parseCommandLine(const std::vector<std::string>& args)
     {
         if (! output)
             fail("--match: missing -o PRESET_FILE, the preset file to write (see --help)");
+        if (sampleRate)
+            fail("--sample-rate cannot be used with --match (the candidates are rendered at the recording's rate)");
         job.output = output;
         return result; // the options it refuses: Match.cpp
     }

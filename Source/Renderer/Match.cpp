@@ -472,6 +472,9 @@ int runMatch(const RenderJob& job)
         throw UserError(std::string("the model cannot be configured: ") + e.what());
     }
 
+    std::error_code ec;
+    if (std::filesystem::equivalent(*job.match, *job.output, ec))
+        throw UserError("-o " + job.output->string() + " is the recording itself; give the preset file another name");
     AtomicFile presetFile(*job.output); // an unusable path fails here, before the search
 
     const int budget = job.matchBudget.value_or(kDefaultMatchBudget);

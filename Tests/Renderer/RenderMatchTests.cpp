@@ -134,6 +134,13 @@ TEST_CASE("match: bad options are refused, no preset written", "[renderer][match
     refuse({ "--hit", "0:100" }, "--hit");
     refuse({ "--set", "air_model=airbox" }, "air box");
     requireRejected(dir, { "--match", recording }, "-o");
+    refuse({ "--sample-rate", "44100" }, "--sample-rate");
+
+    // -o naming the recording itself: refused, the recording untouched.
+    const auto inOut = matchInput(dir, "self.wav", syntheticStrike(48000.0, 1.0));
+    const auto before = readText(inOut);
+    requireRejected(dir, { "--match", inOut.string(), "-o", inOut.string(), "--match-budget", "12" }, "the recording itself");
+    CHECK(readText(inOut) == before);
     requireRejected(dir, { "-o", preset, "--hit", "0:100", "--match-params", "damping" }, "--match-params");
 }
 
