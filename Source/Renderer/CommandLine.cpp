@@ -223,6 +223,8 @@ std::vector<MatchCoordinate> parseMatchParams(std::string_view text)
     return coordinates;
 }
 
+int parseMatchSeed(std::string_view text) { return parseIntegerIn(text, "--match-seed", 0, 2147483647); }
+
 int parseMatchBudget(std::string_view text) { return parseIntegerIn(text, "--match-budget", kMinMatchBudget, kMaxMatchBudget, "renders"); }
 
 int parseBlockSize(std::string_view text) { return parseIntegerIn(text, "--block-size", kMinBlockSize, kMaxBlockSize, "samples"); }
@@ -569,6 +571,7 @@ CommandLine parseCommandLine(const std::vector<std::string>& args)
     options.once("--match", job.match, parsePath);
     options.once("--match-params", job.matchParams, parseMatchParams);
     options.once("--match-budget", job.matchBudget, parseMatchBudget);
+    options.once("--match-seed", job.matchSeed, parseMatchSeed);
     options.parse();
 
     if (sampleRate)
@@ -593,6 +596,8 @@ CommandLine parseCommandLine(const std::vector<std::string>& args)
         fail("--match-params is an option of --match");
     if (job.matchBudget)
         fail("--match-budget is an option of --match");
+    if (job.matchSeed)
+        fail("--match-seed is an option of --match");
 
     checkBenchOptions(job, job.seconds.has_value());
 
@@ -766,6 +771,8 @@ Matching a recording:
                         mallet_stiffness, mic_top, mic_bottom, mic_room, velocity
                         (with --set snares_engaged=off, not the two snare ones)
   --match-budget N      renders the match may use, 12..100000 (default )" + std::to_string(kDefaultMatchBudget) + R"()
+  --match-seed N        the search's random numbers, 0..2147483647 (default 20240611): the same
+                        seed gives the same preset file; another explores other candidates
 )" + presetLine() + R"(
 Exit status: 0 success, 2 bad input or unwritable output (one line on stderr starting
 with "snaresim-render: error: ", no output file left behind), 1 internal failure,

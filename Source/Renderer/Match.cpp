@@ -485,6 +485,7 @@ int runMatch(const RenderJob& job)
     // snares make one strike's distance noisy, the mean of three is the one that decides.
     SearchSettings settings;
     settings.budget = budget - 2 * kMatchFinalists;
+    settings.seed = (std::uint64_t) job.matchSeed.value_or(kDefaultMatchSeed);
     const auto ranked = searchMinimum(objective.startPoint(), objective, settings, kMatchFinalists);
 
     MatchResult result;

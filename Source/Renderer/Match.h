@@ -19,6 +19,7 @@ namespace snaresim::render
 inline constexpr double kMatchSeconds = 0.6;
 inline constexpr int kMatchFixedVelocity = 100; // when velocity is not searched
 inline constexpr int kMatchFinalists = 3;       // re-rendered at velocity -4 and +4 at the end
+inline constexpr int kDefaultMatchSeed = 20240611; // --match-seed
 
 // The default --match-params (velocity: the strike's MIDI velocity, searched with them); with
 // the snares off at the start, snare_tension and snare_count are left out.

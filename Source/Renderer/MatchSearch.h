@@ -37,7 +37,7 @@ public:
 struct SearchSettings
 {
     int budget = 200;           // evaluations the objective may pay for
-    std::uint64_t seed = 20240611;
+    std::uint64_t seed = 20240611; // --match-seed
     double globalShare = 0.35;  // of the budget, for the Latin hypercube
     double firstStep = 0.125;
     double lastStep = 1.0 / 256.0;

@@ -116,6 +116,7 @@ struct RenderJob
     std::optional<std::filesystem::path> match;     // --match RECORDING (-o is then the preset file)
     std::optional<std::vector<MatchCoordinate>> matchParams; // --match-params ID,ID,... (checked IDs)
     std::optional<int> matchBudget;                 // --match-budget N (renders)
+    std::optional<int> matchSeed;                   // --match-seed N (the search's random numbers)
 
     MicOutput selectedMic() const { return mic.value_or(MicOutput::mix); }
     int selectedBlockSize() const { return blockSize.value_or(kDefaultBlockSize); }

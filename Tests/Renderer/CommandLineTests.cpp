@@ -312,4 +312,8 @@ TEST_CASE("match options: the recording, the preset file, the parameters searche
     CHECK(errorOf({ "--match", "a.wav", "-o", "m", "--match-budget", "11" }) == "--match-budget: '11' is outside 12..100000 renders");
     CHECK(errorOf(playable({ "--match-params", "damping" })) == "--match-params is an option of --match");
     CHECK(errorOf(playable({ "--match-budget", "50" })) == "--match-budget is an option of --match");
+    CHECK(jobOf({ "--match", "a.wav", "-o", "m", "--match-seed", "42" }).matchSeed == 42);
+    CHECK(errorOf({ "--match", "a.wav", "-o", "m", "--match-seed", "-1" }) == "--match-seed: '-1' is outside 0..2147483647");
+    CHECK(errorOf(playable({ "--match-seed", "5" })) == "--match-seed is an option of --match");
+    CHECK(errorOf({ "--match", "a.wav", "-o", "m", "--sample-rate", "44100" }).starts_with("--sample-rate cannot be used with --match"));
 }

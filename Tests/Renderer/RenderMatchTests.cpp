@@ -287,3 +287,20 @@ TEST_CASE("match: the default parameters searched, without the snare ones when t
         CHECK(parameterOf(json, "snares_engaged") == (snaresOff ? 0.0 : 1.0));
     }
 }
+
+TEST_CASE("match: the same command writes the same preset file; another seed searches elsewhere", "[renderer][match]")
+{
+    TempDir dir;
+    const auto recording = matchInput(dir, "strike.wav", syntheticStrike(48000.0, 1.0)).string();
+    auto presetWith = [&](const std::vector<std::string>& more) {
+        std::vector<std::string> args { "--match", recording, "-o", (dir.out() / "m.snarepreset").string(), "--match-budget", "16",
+                                        "--match-params", "batter_tension,damping,snare_tension" };
+        args.insert(args.end(), more.begin(), more.end());
+        REQUIRE(runRenderer(args, dir.root() / "capture").exitCode == 0);
+        return readText(dir.out() / "m.snarepreset");
+    };
+    const auto first = presetWith({});
+    CHECK(presetWith({}) == first);
+    CHECK(presetWith({ "--match-seed", "20240611" }) == first); // the default
+    CHECK(presetWith({ "--match-seed", "7" }) != first);
+}
