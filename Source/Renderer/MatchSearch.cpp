@@ -72,16 +72,17 @@ private:
 std::vector<SearchPoint> searchMinimum(const UnitPoint& start, SearchObjective& objective, const SearchSettings& settings, int keep)
 {
     const std::size_t n = start.size();
+    const int limit = objective.cost() + settings.budget; // what the objective may have paid at the end
     History history(objective);
     history.evaluate({ start });
 
     // 1. Global: a Latin hypercube.
     std::mt19937_64 rng(settings.seed);
     const int global = std::max(2, (int) std::lround(settings.globalShare * settings.budget));
-    if (n > 0 && objective.cost() < settings.budget)
+    if (n > 0 && objective.cost() < limit)
     {
         auto points = latinHypercube(n, global, rng);
-        points.resize((std::size_t) std::min<int>(global, settings.budget - objective.cost()));
+        points.resize((std::size_t) std::min<int>(global, limit - objective.cost()));
         history.evaluate(points);
     }
 
@@ -97,7 +98,7 @@ std::vector<SearchPoint> searchMinimum(const UnitPoint& start, SearchObjective& 
             return far >= settings.restartSeparation;
         });
     };
-    for (std::size_t next = 0; n > 0 && objective.cost() < settings.budget;)
+    for (std::size_t next = 0; n > 0 && objective.cost() < limit;)
     {
         UnitPoint centre;
         double centreDistance = 0.0;
@@ -117,7 +118,7 @@ std::vector<SearchPoint> searchMinimum(const UnitPoint& start, SearchObjective& 
         }
         starts.push_back(centre);
 
-        for (double step = settings.firstStep; step >= settings.lastStep && objective.cost() < settings.budget;)
+        for (double step = settings.firstStep; step >= settings.lastStep && objective.cost() < limit;)
         {
             std::vector<UnitPoint> polls;
             for (std::size_t d = 0; d < n; ++d)
@@ -128,7 +129,7 @@ std::vector<SearchPoint> searchMinimum(const UnitPoint& start, SearchObjective& 
                     if (p[d] != centre[d])
                         polls.push_back(std::move(p));
                 }
-            polls.resize(std::min<std::size_t>(polls.size(), (std::size_t) (settings.budget - objective.cost())));
+            polls.resize(std::min<std::size_t>(polls.size(), (std::size_t) (limit - objective.cost())));
             const auto distances = history.evaluate(polls);
             const auto best = std::min_element(distances.begin(), distances.end());
             if (best != distances.end() && *best < centreDistance)

@@ -36,7 +36,7 @@ public:
 
 struct SearchSettings
 {
-    int budget = 200;           // evaluations the objective may pay for
+    int budget = 200;           // evaluations this search may pay for (the objective's cost() from its start)
     std::uint64_t seed = 20240611; // --match-seed
     double globalShare = 0.35;  // of the budget, for the Latin hypercube
     double firstStep = 0.125;
