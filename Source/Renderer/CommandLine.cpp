@@ -750,9 +750,9 @@ Matching a recording:
                         one (a WAV or FLAC file holding one strike; channels averaged) and
                         write them as a preset file to -o (--preset FILE and the plug-in's
                         File button load it). The distance compares the features of
-                        scripts/snare_features.py (tail centroid, band shares, the 20 / 40 dB
-                        fall times, lowest strong peak) and the level in third-octave bands
-                        every 10 ms over the first 300 ms, levels normalised
+                        scripts/snare_features.py (tail centroid, band shares, the 20 / 40
+                        dB fall times, lowest strong peak) and the level in third-octave
+                        bands every 10 ms over the first 300 ms, levels normalised
                         (docs/MATCHING.md). Each candidate is one 0.6 s strike at the
                         recording's sample rate (48 kHz outside 32..96 kHz). The search:
                         the start (the defaults, --preset, --set) and a Latin hypercube,
@@ -771,8 +771,9 @@ Matching a recording:
                         mallet_stiffness, mic_top, mic_bottom, mic_room, velocity
                         (with --set snares_engaged=off, not the two snare ones)
   --match-budget N      renders the match may use, 12..100000 (default )" + std::to_string(kDefaultMatchBudget) + R"()
-  --match-seed N        the search's random numbers, 0..2147483647 (default 20240611): the same
-                        seed gives the same preset file; another explores other candidates
+  --match-seed N        the search's random numbers, 0..2147483647 (default 20240611):
+                        the same seed gives the same preset file; another explores other
+                        candidates (the distance varies with it: try a few)
 )" + presetLine() + R"(
 Exit status: 0 success, 2 bad input or unwritable output (one line on stderr starting
 with "snaresim-render: error: ", no output file left behind), 1 internal failure,
