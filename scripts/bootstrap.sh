@@ -39,6 +39,7 @@ packages=(
     juce-modules-source     # JUCE 7 modules + CMake support (pulls in the X11/ALSA/freetype -dev packages)
     libeigen3-dev
     libcli11-dev            # the renderer's command line (header-only)
+    libflac-dev             # the renderer reads FLAC recordings (--match)
     catch2
     lv2-dev
     libjack-jackd2-dev      # JACK support in the standalone application

@@ -1,6 +1,7 @@
 #include "CommandLine.h"
 
 #include "Errors.h"
+#include "Match.h"
 #include "ParameterText.h"
 #include "Microphones.h"
 #include "Presets.h"
@@ -186,6 +187,45 @@ Value parseName(std::string_view text, std::string_view option, std::initializer
     }
     fail(std::string(option) + ": " + inQuotes(text) + " is not one of " + list);
 }
+
+// --match-params ID,ID,...: parameters --match may search (continuous or whole-number ones
+// that change the sound; not the output level, which the level-normalised match ignores), or
+// "velocity" for the strike's; each once.
+std::vector<MatchCoordinate> parseMatchParams(std::string_view text)
+{
+    std::vector<MatchCoordinate> coordinates;
+    for (std::string_view rest = text;;)
+    {
+        const auto comma = rest.find(',');
+        const auto key = rest.substr(0, comma);
+        MatchCoordinate coordinate;
+        if (key.empty())
+            fail("--match-params: " + inQuotes(text) + " is not a comma-separated list of parameter IDs");
+        if (key != "velocity")
+        {
+            const auto id = findParameter(key);
+            if (! id)
+                fail("--match-params: unknown parameter " + inQuotes(key) + " (see --list-params)");
+            const auto& parameter = spec(*id);
+            if (parameter.kind == ParamKind::toggle || parameter.kind == ParamKind::choice)
+                fail("--match-params: " + inQuotes(key) + " is a switch or a choice, not searched; set it with --set");
+            if (*id == ParamId::outputGain || *id == ParamId::offlineAirBox)
+                fail("--match-params: " + inQuotes(key) + " does not change the matched sound");
+            coordinate.id = id;
+        }
+        if (std::find(coordinates.begin(), coordinates.end(), coordinate) != coordinates.end())
+            fail("--match-params: " + inQuotes(key) + " is given twice");
+        coordinates.push_back(coordinate);
+        if (comma == std::string_view::npos)
+            break;
+        rest = rest.substr(comma + 1);
+    }
+    return coordinates;
+}
+
+int parseMatchSeed(std::string_view text) { return parseIntegerIn(text, "--match-seed", 0, 2147483647); }
+
+int parseMatchBudget(std::string_view text) { return parseIntegerIn(text, "--match-budget", kMinMatchBudget, kMaxMatchBudget, "renders"); }
 
 int parseBlockSize(std::string_view text) { return parseIntegerIn(text, "--block-size", kMinBlockSize, kMaxBlockSize, "samples"); }
 
@@ -528,6 +568,10 @@ CommandLine parseCommandLine(const std::vector<std::string>& args)
     options.once("--box", job.boxSize, parseBox);
     options.once("--box-margin", job.boxMargin, parseBoxMargin);
     options.once("--threads", job.threads, parseThreads);
+    options.once("--match", job.match, parsePath);
+    options.once("--match-params", job.matchParams, parseMatchParams);
+    options.once("--match-budget", job.matchBudget, parseMatchBudget);
+    options.once("--match-seed", job.matchSeed, parseMatchSeed);
     options.parse();
 
     if (sampleRate)
@@ -538,6 +582,22 @@ CommandLine parseCommandLine(const std::vector<std::string>& args)
         result.action = CommandLine::Action::listParameters;
         return result;
     }
+
+    if (job.match)
+    {
+        if (! output)
+            fail("--match: missing -o PRESET_FILE, the preset file to write (see --help)");
+        if (sampleRate)
+            fail("--sample-rate cannot be used with --match (the candidates are rendered at the recording's rate)");
+        job.output = output;
+        return result; // the options it refuses: Match.cpp
+    }
+    if (job.matchParams)
+        fail("--match-params is an option of --match");
+    if (job.matchBudget)
+        fail("--match-budget is an option of --match");
+    if (job.matchSeed)
+        fail("--match-seed is an option of --match");
 
     checkBenchOptions(job, job.seconds.has_value());
 
@@ -573,6 +633,8 @@ Usage:
   snaresim-render -o OUT.wav (--hit TIME:VELOCITY ... | --midi FILE.mid) [options]
   snaresim-render --bench [-o OUT.wav] [--bench-scenario default|roll | --bench-short]
                   [--block-size N] [--hit ... | --midi ...] [options]
+  snaresim-render --match RECORDING -o PRESET_FILE [--match-params ID,ID,...]
+                  [--match-budget N] [--preset ...] [--set ...] [--json]
   snaresim-render --list-params
   snaresim-render --help
 
@@ -683,6 +745,36 @@ Benchmark:
                         those times; worst_block_raw_ms is the slowest block of any run
                         and realtime_factor_slowest_run the slowest whole run. The audio,
                         -o and the other figures are of the first run.
+
+Matching a recording:
+  --match FILE          search the drum's parameters for the strike closest to a recorded
+                        one (a WAV or FLAC file holding one strike; channels averaged) and
+                        write them as a preset file to -o (--preset FILE and the plug-in's
+                        File button load it). The distance compares the features of
+                        scripts/snare_features.py (tail centroid, band shares, the 20 / 40
+                        dB fall times, lowest strong peak) and the level in third-octave
+                        bands every 10 ms over the first 300 ms, levels normalised
+                        (docs/MATCHING.md). Each candidate is one 0.6 s strike at the
+                        recording's sample rate (48 kHz outside 32..96 kHz). The search:
+                        the start (the defaults, --preset, --set) and a Latin hypercube,
+                        then a compass search; the three best struck again at velocity -4
+                        and +4, the best mean wins. Prints the best distance as it goes
+                        (stderr; one line in place on a terminal), then the parameters and
+                        the features of recording and match (--json: one object with
+                        "parameters", every ID to its value, "distance", "velocity",
+                        "terms", the features, "renders", "wall_seconds"). Not a strike
+                        (unreadable, silent, shorter than 100 ms, no 20 dB fall): exit 2.
+  --match-params LIST   the comma-separated parameter IDs to search (continuous or whole
+                        numbers; not output_gain), "velocity" for the strike's MIDI
+                        velocity; the others keep their start values (velocity 100).
+                        Default: batter_tension, carry_tension, damping, high_damping,
+                        snare_tension, snare_count, strike_position, mallet_mass,
+                        mallet_stiffness, mic_top, mic_bottom, mic_room, velocity
+                        (with --set snares_engaged=off, not the two snare ones)
+  --match-budget N      renders the match may use, 12..100000 (default )" + std::to_string(kDefaultMatchBudget) + R"()
+  --match-seed N        the search's random numbers, 0..2147483647 (default 20240611):
+                        the same seed gives the same preset file; another explores other
+                        candidates (the distance varies with it: try a few)
 )" + presetLine() + R"(
 Exit status: 0 success, 2 bad input or unwritable output (one line on stderr starting
 with "snaresim-render: error: ", no output file left behind), 1 internal failure,

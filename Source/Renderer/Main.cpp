@@ -14,6 +14,7 @@
 #include "EngineSetup.h"
 #include "Errors.h"
 #include "Interrupt.h"
+#include "Match.h"
 #include "Microphones.h"
 #include "MidiStrikes.h"
 #include "Plotting.h"
@@ -312,6 +313,8 @@ int run(const std::vector<std::string>& args)
         case CommandLine::Action::render:
             break;
     }
+    if (commandLine.job.match)
+        return runMatch(commandLine.job);
     return commandLine.job.bench ? benchmark(commandLine.job) : render(commandLine.job);
 }
 

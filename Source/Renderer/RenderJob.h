@@ -75,6 +75,17 @@ struct ParameterOverride
     std::string text;   // as typed, for error messages
 };
 
+// One coordinate --match searches: a parameter, or (no id) the strike's MIDI velocity.
+struct MatchCoordinate
+{
+    std::optional<ParamId> id;
+    bool operator==(const MatchCoordinate&) const = default;
+};
+
+inline constexpr int kDefaultMatchBudget = 400;  // --match-budget: renders
+inline constexpr int kMinMatchBudget = 12;
+inline constexpr int kMaxMatchBudget = 100000;
+
 struct RenderJob
 {
     std::optional<std::filesystem::path> output;    // -o (WAV); always given unless bench
@@ -102,6 +113,10 @@ struct RenderJob
     std::optional<Point3> boxSize;                  // --box X,Y,Z or --box S (air box, metres)
     std::optional<double> boxMargin;                // --box-margin M (air box, metres)
     std::optional<int> threads;                     // --threads N (air box; default: all cores)
+    std::optional<std::filesystem::path> match;     // --match RECORDING (-o is then the preset file)
+    std::optional<std::vector<MatchCoordinate>> matchParams; // --match-params ID,ID,... (checked IDs)
+    std::optional<int> matchBudget;                 // --match-budget N (renders)
+    std::optional<int> matchSeed;                   // --match-seed N (the search's random numbers)
 
     MicOutput selectedMic() const { return mic.value_or(MicOutput::mix); }
     int selectedBlockSize() const { return blockSize.value_or(kDefaultBlockSize); }

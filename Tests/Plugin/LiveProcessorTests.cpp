@@ -364,6 +364,40 @@ TEST_CASE ("preset files load into every parameter, save what the host holds, an
     dir.deleteRecursively();
 }
 
+TEST_CASE ("a preset file written by snaresim-render --match loads into every parameter", "[processor][programs]")
+{
+    // A strike of another drum, matched over the default parameters with a small budget: the
+    // file holds the match's full-precision values and a comment line before the preset's own.
+    const auto dir = juce::File::createTempFile ("snaresim-match");
+    REQUIRE (dir.createDirectory());
+    const auto recording = dir.getChildFile ("strike.wav");
+    const auto preset = dir.getChildFile ("match.snarepreset");
+    auto run = [] (const juce::StringArray& args) {
+        juce::ChildProcess child;
+        REQUIRE (child.start (args, juce::ChildProcess::wantStdOut));
+        const auto out = child.readAllProcessOutput();
+        REQUIRE (child.waitForProcessToFinish (120000));
+        REQUIRE (child.getExitCode() == 0);
+        return out;
+    };
+    run ({ SNARESIM_RENDER_EXE, "-o", recording.getFullPathName(), "--hit", "0:90", "--seconds", "0.6",
+           "--set", "batter_tension=3900", "--set", "damping=40" });
+    const auto json = juce::JSON::parse (run ({ SNARESIM_RENDER_EXE, "--match", recording.getFullPathName(),
+                                                "-o", preset.getFullPathName(), "--match-budget", "12", "--json" }));
+    REQUIRE (preset.loadFileAsString().startsWith ("# Matched to strike.wav"));
+
+    SnareSimAudioProcessor proc;
+    CHECK (snaresim::ui::loadPresetFile (proc, preset).isEmpty());
+    const auto loaded = proc.parameterValues();
+    for (const auto& spec : snaresim::parameterSpecs())
+    {
+        INFO ("parameter " << spec.key);
+        const double expected = json["parameters"][juce::Identifier (juce::String (std::string (spec.key)))];
+        CHECK (loaded.get (spec.id) == Approx (expected).epsilon (1e-5).margin (1e-9));
+    }
+    dir.deleteRecursively();
+}
+
 TEST_CASE ("a version-1 state loads with its values mapped", "[processor][state]")
 {
     CHECK (snaresim::dampingFromT60 (4.0) == Approx (0.0).margin (1e-12));

@@ -288,3 +288,32 @@ TEST_CASE("the air box's options: microphones, walls, box, margin, threads", "[r
     CHECK(errorOf(playable({ "--walls", "open" })) == "--walls: 'open' is not one of absorbing|reflecting");
     CHECK(errorOf(playable({ "--threads", "0" })) == "--threads: '0' is outside 1..256");
 }
+
+TEST_CASE("match options: the recording, the preset file, the parameters searched and the budget", "[renderer][command-line][match]")
+{
+    const auto job = jobOf({ "--match", "snare.flac", "-o", "m.snarepreset", "--match-params", "batter_tension,velocity,snare_count",
+                             "--match-budget", "100" });
+    REQUIRE(job.match);
+    CHECK(job.match->string() == "snare.flac");
+    CHECK(job.output->string() == "m.snarepreset");
+    REQUIRE(job.matchParams);
+    CHECK(*job.matchParams
+          == std::vector<MatchCoordinate> { { snaresim::ParamId::batterTension }, { std::nullopt }, { snaresim::ParamId::snareCount } });
+    CHECK(job.matchBudget == 100);
+    CHECK_FALSE(jobOf({ "--match", "a.wav", "-o", "m.snarepreset" }).matchParams); // the default list
+
+    CHECK(errorOf({ "--match", "a.wav" }) == "--match: missing -o PRESET_FILE, the preset file to write (see --help)");
+    CHECK(errorOf({ "--match", "a.wav", "-o", "m", "--match-params", "batter_tension,bogus" })
+          == "--match-params: unknown parameter 'bogus' (see --list-params)");
+    CHECK(errorOf({ "--match", "a.wav", "-o", "m", "--match-params", "" }).starts_with("--match-params: '' is not a comma-separated list"));
+    CHECK(errorOf({ "--match", "a.wav", "-o", "m", "--match-params", "damping," }).starts_with("--match-params: 'damping,' is not"));
+    CHECK(errorOf({ "--match", "a.wav", "-o", "m", "--match-params", "velocity,velocity" }) == "--match-params: 'velocity' is given twice");
+    CHECK(errorOf({ "--match", "a.wav", "-o", "m", "--match-params", "air_model" }).find("a switch or a choice") != std::string::npos);
+    CHECK(errorOf({ "--match", "a.wav", "-o", "m", "--match-budget", "11" }) == "--match-budget: '11' is outside 12..100000 renders");
+    CHECK(errorOf(playable({ "--match-params", "damping" })) == "--match-params is an option of --match");
+    CHECK(errorOf(playable({ "--match-budget", "50" })) == "--match-budget is an option of --match");
+    CHECK(jobOf({ "--match", "a.wav", "-o", "m", "--match-seed", "42" }).matchSeed == 42);
+    CHECK(errorOf({ "--match", "a.wav", "-o", "m", "--match-seed", "-1" }) == "--match-seed: '-1' is outside 0..2147483647");
+    CHECK(errorOf(playable({ "--match-seed", "5" })) == "--match-seed is an option of --match");
+    CHECK(errorOf({ "--match", "a.wav", "-o", "m", "--sample-rate", "44100" }).starts_with("--sample-rate cannot be used with --match"));
+}

@@ -1,0 +1,32 @@
+#pragma once
+// snaresim-render --match RECORDING -o PRESET_FILE: the drum's parameters whose strike comes
+// closest to a recorded one (MatchDistance.h), found by MatchSearch.h's search over the
+// parameters of --match-params, written as a preset file (docs/MATCHING.md).
+//
+// The recording is read (WAV or FLAC, channels averaged) and measured first: unreadable,
+// silent, shorter than 100 ms or no strike is a UserError before any render. Each candidate is
+// one strike of the drum built from the parameters (makeDrumConfig, played through the
+// player as the plug-in plays it), kMatchSeconds long, at the recording's sample rate
+// (48 kHz when that is outside 32..96 kHz; the features are in Hz and ms either way).
+
+#include "RenderJob.h"
+
+#include <string>
+
+namespace snaresim::render
+{
+
+inline constexpr double kMatchSeconds = 0.6;
+inline constexpr int kMatchFixedVelocity = 100; // when velocity is not searched
+inline constexpr int kMatchFinalists = 3;       // re-rendered at velocity -4 and +4 at the end
+inline constexpr int kDefaultMatchSeed = 20240611; // --match-seed
+
+// The default --match-params (velocity: the strike's MIDI velocity, searched with them); with
+// the snares off at the start, snare_tension and snare_count are left out.
+std::string defaultMatchParams();
+
+// Runs the match; prints the progress on stderr (not with --json) and the result on stdout.
+// Returns the exit status (0).
+int runMatch(const RenderJob& job);
+
+} // namespace snaresim::render
