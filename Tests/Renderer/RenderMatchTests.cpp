@@ -288,7 +288,7 @@ TEST_CASE("match: the default parameters searched, without the snare ones when t
     }
 }
 
-TEST_CASE("match: the same command writes the same preset file; another seed searches elsewhere", "[renderer][match]")
+TEST_CASE("match: the same command writes the same preset file, another seed searches elsewhere", "[renderer][match]")
 {
     TempDir dir;
     const auto recording = matchInput(dir, "strike.wav", syntheticStrike(48000.0, 1.0)).string();
