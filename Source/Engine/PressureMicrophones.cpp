@@ -29,6 +29,26 @@ double meanInverseOver(double x, double y, double z, double w, double r, const A
     return sum / 36.0;
 }
 
+// The centre of the interior nodes of columns [ix0, ix1) and rows [iy0, iy1); false if none.
+bool interiorCentre(const CircularGrid& g, int ix0, int ix1, int iy0, int iy1, double& x, double& y)
+{
+    double sx = 0.0, sy = 0.0;
+    int count = 0;
+    for (int iy = iy0; iy < iy1; ++iy)
+        for (int ix = ix0; ix < ix1; ++ix)
+            if (g.mask()[(size_t) g.index(ix, iy)] > 0.5)
+            {
+                sx += g.x(ix);
+                sy += g.x(iy);
+                ++count;
+            }
+    if (count == 0)
+        return false;
+    x = sx / count;
+    y = sy / count;
+    return true;
+}
+
 // Kirchhoff's obliquity (1 + cos theta) / 2 blended in by `far` (0 near the head: 1).
 double obliquityAt(double r, double far, double z, const AirPoint& p) { return 1.0 - far * 0.5 * (1.0 - std::abs(p.z_m - z) / r); }
 } // namespace
@@ -54,21 +74,12 @@ PressureMicrophones::PressureMicrophones(const DrumConfig& cfg, const Membrane& 
         for (int by = 0; by < blocks; ++by)
             for (int bx = 0; bx < blocks; ++bx)
             {
-                double sx = 0.0, sy = 0.0;
-                int count = 0;
-                for (int iy = by * h.side; iy < std::min(n, (by + 1) * h.side); ++iy)
-                    for (int ix = bx * h.side; ix < std::min(n, (bx + 1) * h.side); ++ix)
-                        if (g.mask()[(size_t) g.index(ix, iy)] > 0.5)
-                        {
-                            sx += g.x(ix);
-                            sy += g.x(iy);
-                            ++count;
-                        }
-                if (count == 0)
+                double x = 0.0, y = 0.0;
+                if (! interiorCentre(g, bx * h.side, std::min(n, (bx + 1) * h.side), by * h.side, std::min(n, (by + 1) * h.side), x, y))
                     continue;
                 h.block.push_back(by * blocks + bx);
-                h.cx.push_back(sx / count);
-                h.cy.push_back(sy / count);
+                h.cx.push_back(x);
+                h.cy.push_back(y);
             }
         h.cells = (int) h.block.size();
         h.blocks = blocks;
@@ -157,19 +168,10 @@ void PressureMicrophones::place(Listener& l, const AirPoint& p) noexcept
     for (int cy = 0; cy < fineRows; ++cy)
         for (int cx = 0; cx < fineColumns; ++cx)
         {
-            double sx = 0.0, sy = 0.0;
-            int count = 0;
-            for (int iy = l.nearY + cy * f.fine; iy < std::min(l.nearY + l.nearRows, l.nearY + (cy + 1) * f.fine); ++iy)
-                for (int ix = l.nearX + cx * f.fine; ix < std::min(l.nearX + l.nearColumns, l.nearX + (cx + 1) * f.fine); ++ix)
-                    if (g.mask()[(size_t) g.index(ix, iy)] > 0.5)
-                    {
-                        sx += g.x(ix);
-                        sy += g.x(iy);
-                        ++count;
-                    }
-            if (count == 0)
+            double x = 0.0, y = 0.0;
+            if (! interiorCentre(g, l.nearX + cx * f.fine, std::min(l.nearX + l.nearColumns, l.nearX + (cx + 1) * f.fine),
+                                 l.nearY + cy * f.fine, std::min(l.nearY + l.nearRows, l.nearY + (cy + 1) * f.fine), x, y))
                 continue;
-            const double x = sx / count, y = sy / count;
             const double r = std::max(1e-3, distance(x, y, f.z, p));
             add(tapAt(r, rho / (2.0 * std::numbers::pi) * meanInverseOver(x, y, f.z, fw, r, p) * obliquityAt(r, far, f.z, p) * f.sign),
                 f.cells + 1 + cy * fineColumns + cx);

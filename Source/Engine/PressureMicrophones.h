@@ -61,8 +61,6 @@ public:
 
     void clear() noexcept;
 
-    int cellsOf(bool batter) const { return heads[batter ? 0 : 1].cells; }
-
 private:
     struct Head
     {
