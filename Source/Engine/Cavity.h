@@ -31,8 +31,6 @@ public:
 
     double pressureNow() const { return -K * dVNow; }  // p^n, Pa
     void setVolumeNext(double dV) { dVNext = dV; }
-    double volumeChangeNow() const { return dVNow; }
-    double volumeChangeNext() const { return dVNext; }
     double energy() const { return 0.5 * K * dVNext * dVNow; } // at n+1/2
     double stepLoss() const { return 0.0; }                     // adiabatic, lossless
     void advance() { dVNow = dVNext; }
