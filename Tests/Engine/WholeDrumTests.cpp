@@ -229,9 +229,11 @@ TEST_CASE("the quadratised snare solve follows Newton's through the first contac
     // the carry head's motion agrees closely while the snares are pressed down and thrown off
     // (the first 3.5 ms), before the chaotic re-strikes let the two drift apart.
     DrumConfig cfg = test::wholeDrum();
+    cfg.snares.scheme = CollisionScheme::newton; // the schema's default is the quadratised one
     Drum newton(cfg);
     cfg.snares.scheme = CollisionScheme::quadratised;
     Drum quadratised(cfg);
+    REQUIRE(newton.config().snares.scheme == CollisionScheme::newton);
     newton.strike(5.0, 0.3, 0.0);
     quadratised.strike(5.0, 0.3, 0.0);
     double diff = 0.0, ref = 0.0;
