@@ -1,5 +1,6 @@
 #include "EnergyPlot.h"
 
+#include "Formatted.h"
 #include "Plotting.h"
 
 #include <algorithm>
@@ -31,13 +32,6 @@ const juce::Colour kTermColours[] = { juce::Colour(0xff1f77b4), juce::Colour(0xf
                                       juce::Colour(0xffe377c2), juce::Colour(0xff7f7f7f), juce::Colour(0xffbcbd22),
                                       juce::Colour(0xff17becf) };
 constexpr float kTermThickness = 1.6f;
-
-std::string formatted(const char* format, double value)
-{
-    char buffer[64];
-    std::snprintf(buffer, sizeof buffer, format, value);
-    return buffer;
-}
 
 } // namespace
 

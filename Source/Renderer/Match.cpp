@@ -4,6 +4,7 @@
 #include "AudioFileReader.h"
 #include "EngineSetup.h"
 #include "Errors.h"
+#include "Formatted.h"
 #include "Interrupt.h"
 #include "MatchDistance.h"
 #include "MatchSearch.h"
@@ -292,11 +293,7 @@ struct MatchResult
 
 std::string optionalText(const std::optional<double>& v, const char* format)
 {
-    if (! v)
-        return "n/a";
-    char buffer[64];
-    std::snprintf(buffer, sizeof buffer, format, *v);
-    return buffer;
+    return v ? formatted(format, *v) : "n/a";
 }
 
 juce::var optionalVar(const std::optional<double>& v) { return v ? juce::var(*v) : juce::var(); }

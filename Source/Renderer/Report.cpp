@@ -1,6 +1,7 @@
 #include "Report.h"
 
 #include "Benchmark.h"
+#include "Formatted.h"
 #include "Microphones.h"
 
 #include <juce_core/juce_core.h>
@@ -40,13 +41,6 @@ juce::var pathOrNull(const std::optional<std::filesystem::path>& path)
 std::string channelText(int channels)
 {
     return channels == 1 ? "mono" : std::to_string(channels) + " channels";
-}
-
-std::string formatted(const char* format, auto... values)
-{
-    char buffer[256];
-    std::snprintf(buffer, sizeof buffer, format, values...);
-    return buffer;
 }
 
 // The step profile's phases, the path's in step order: each one's compute per second of audio

@@ -1,5 +1,6 @@
 #include "SnarePlot.h"
 
+#include "Formatted.h"
 #include "Plotting.h"
 
 #include <algorithm>
@@ -22,13 +23,6 @@ const juce::Colour kNote { 0xff404040 };
 
 constexpr float kWireMeanThickness = 2.4f;
 constexpr float kCarryThickness = 1.5f;
-
-std::string formatted(const char* format, double value)
-{
-    char buffer[64];
-    std::snprintf(buffer, sizeof buffer, format, value);
-    return buffer;
-}
 
 // A signed number with a typographic minus sign.
 std::string signedText(const char* format, double value)

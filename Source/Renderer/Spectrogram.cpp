@@ -1,5 +1,6 @@
 #include "Spectrogram.h"
 
+#include "Formatted.h"
 #include "Plotting.h"
 
 #include <algorithm>
@@ -36,13 +37,6 @@ int nextPowerOfTwo(int n)
     while (p < n)
         p *= 2;
     return p;
-}
-
-std::string formatted(const char* format, double value)
-{
-    char buffer[64];
-    std::snprintf(buffer, sizeof buffer, format, value);
-    return buffer;
 }
 
 } // namespace

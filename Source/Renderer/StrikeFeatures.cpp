@@ -1,5 +1,7 @@
 #include "StrikeFeatures.h"
 
+#include "Formatted.h"
+
 #include <unsupported/Eigen/FFT>
 
 #include <algorithm>
@@ -42,13 +44,6 @@ std::vector<double> powerSpectrum(std::vector<double> x, std::size_t n)
     return power;
 }
 
-std::string format(const char* pattern, double value)
-{
-    char buffer[96];
-    std::snprintf(buffer, sizeof buffer, pattern, value);
-    return buffer;
-}
-
 } // namespace
 
 StrikeFeatures measureStrike(std::span<const double> samples, double rate, StrikeRules rules)
@@ -60,7 +55,7 @@ StrikeFeatures measureStrike(std::span<const double> samples, double rate, Strik
         if (! std::isfinite(v))
             throw NotAStrike("non-finite samples");
     if (rules == StrikeRules::recording && (double) n < 0.100 * rate)
-        throw NotAStrike(format("shorter than 100 ms (%.1f ms)", 1e3 * (double) n / rate));
+        throw NotAStrike(formatted("shorter than 100 ms (%.1f ms)", 1e3 * (double) n / rate));
 
     const double mean = std::accumulate(samples.begin(), samples.end(), 0.0) / (double) n;
     std::vector<double> x(samples.begin(), samples.end());
@@ -93,7 +88,7 @@ StrikeFeatures measureStrike(std::span<const double> samples, double rate, Strik
     const auto peakAt = (std::size_t) (std::max_element(power.begin(), power.end()) - power.begin());
     const double peakPower = power[peakAt];
     if (rules == StrikeRules::recording && (double) peakAt - (double) onset > 0.100 * rate)
-        throw NotAStrike(format("no strike (the level peaks %.0f ms after the onset)", 1e3 * ((double) peakAt - (double) onset) / rate));
+        throw NotAStrike(formatted("no strike (the level peaks %.0f ms after the onset)", 1e3 * ((double) peakAt - (double) onset) / rate));
 
     auto fall = [&](double db) -> std::optional<double> {
         const double threshold = peakPower * std::pow(10.0, -db / 10.0);
