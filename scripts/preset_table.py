@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Every factory preset's strike beside the recorded snare drums: a Markdown table (numpy, scipy).
 
-    python3 scripts/preset_table.py [--build build] [--work DIR] [--seconds 1.5] [--json]
+    python3 scripts/preset_table.py [--build build] [--work DIR] [--seconds 1.5] [--json] [--presets P,P,...]
 
 Each factory preset (the renderer's --help lists them) is struck once at velocities 60, 100 and
 127 as the plug-in plays it: snaresim-render --preset NAME --hit 0:VELOCITY, the default model
@@ -20,6 +20,8 @@ Checks, per row:
     velocity): at least 2.5 or not
 A preset plays with its snares off when its render equals the one with snares_engaged=off.
 
+--presets chooses the presets: names or preset files (a file's rows are named after it), for
+trying a preset before it becomes a factory one.
 --work DIR keeps the renders there and uses those it finds (delete them after a change of the
 model or of --seconds). --json prints every feature (the shares in %), range and check as one
 JSON object instead.
@@ -117,10 +119,11 @@ def check(value, bounds):
     return 'low' if value < bounds[0] else 'high' if value > bounds[1] else 'in'
 
 
-def measure(render, work, seconds, keep):
+def measure(render, work, seconds, keep, chosen=None):
     rows = []
-    for preset in presets(render):
-        slug = re.sub(r'[^a-z0-9]+', '-', preset.lower()).strip('-')
+    for preset in chosen or presets(render):
+        name = os.path.splitext(os.path.basename(preset))[0] if os.path.isfile(preset) else preset
+        slug = re.sub(r'[^a-z0-9]+', '-', name.lower()).strip('-')
         for velocity in VELOCITIES:
             on = os.path.join(work, 'preset-%s-v%d.wav' % (slug, velocity))
             off = os.path.join(work, 'preset-%s-v%d-snares-off.wav' % (slug, velocity))
@@ -142,7 +145,10 @@ def main():
     parser.add_argument('--work', default=None, help='keep the renders in this folder and use those found there')
     parser.add_argument('--seconds', type=float, default=1.5, help='length of each render (default 1.5)')
     parser.add_argument('--json', action='store_true', help='one JSON object instead of the Markdown tables')
+    parser.add_argument('--presets', default=None,
+                        help='comma-separated preset names or preset files (default: every factory preset)')
     args = parser.parse_args()
+    chosen = [p for p in args.presets.split(',') if p] if args.presets else None
     render = os.path.join(args.build, 'Source/Renderer/snaresim-render')
     if not (os.path.isfile(render) and os.access(render, os.X_OK)):
         print('preset_table.py: no renderer at %s (cmake --build %s --target snaresim-render)' % (render, args.build),
@@ -159,10 +165,10 @@ def main():
             return 2
         if args.work:
             os.makedirs(args.work, exist_ok=True)
-            rows = measure(render, args.work, args.seconds, True)
+            rows = measure(render, args.work, args.seconds, True, chosen)
         else:
             with tempfile.TemporaryDirectory() as tmp:
-                rows = measure(render, tmp, args.seconds, False)
+                rows = measure(render, tmp, args.seconds, False, chosen)
     except snare_features.BadInput as e:
         print('preset_table.py: %s' % e, file=sys.stderr)
         return 2
