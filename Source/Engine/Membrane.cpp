@@ -68,14 +68,14 @@ Membrane::Membrane(const MembraneSpec& s, double timeStep, double reserve)
         }
     if (single)
     {
-        dRowScratch.assign((size_t) (n + 1) * (size_t) (n + 1), 0.0);
+        dRowScratch.assign((size_t) n + 8, 0.0); // a band's row: blocks of up to 8 nodes
         accScratch.assign((size_t) n, 0.0);
         fX.assign(xs.begin(), xs.end());
         fY.assign(ys.begin(), ys.end());
     }
     else
     {
-        dRowScratch.assign((size_t) (n + 1) * (size_t) (n + 1), 0.0);
+        dRowScratch.assign((size_t) n + 8, 0.0); // a band's row: blocks of up to 8 nodes
         accScratch.assign((size_t) n, 0.0);
         dX = std::move(xs);
         dY = std::move(ys);
@@ -196,66 +196,66 @@ SNARESIM_WIDE_VECTOR_CLONES void firstMoments(const Real* __restrict w, const Re
     sx = ax[0];
     sy = ay[0];
 }
-// Block sums of an n x n grid in two passes: each band of side rows added into one row of
-// `rows` (row length blocks * side, zero beyond n; vectorised, in the state's precision), then
-// each run of side values of `rows` summed, a block each (side a constant: vectorised too).
-// In double whatever the state: the microphones take second differences in time of these sums,
-// which would lift a float sum's rounding by 1 / (omega k)^2.
-template <class Real>
-SNARESIM_WIDE_VECTOR_CLONES void sumBands(const Real* __restrict w, int n, int side, double* __restrict rows)
+// Block sums of an n x n grid, band by band: a band's Side rows summed node by node into one
+// row (the Side values held in registers, vectorised along the row; zero beyond n), then its
+// runs of Side values, a block each. In double whatever the state: the microphones take second
+// differences in time of these sums, which would lift a float sum's rounding by 1 / (omega k)^2.
+template <int Side, class Real>
+SNARESIM_WIDE_VECTOR_CLONES void sumBlocks(const Real* __restrict w, int n, double* __restrict acc, double* __restrict out)
 {
-    const int blocks = (n + side - 1) / side, width = blocks * side;
+    const int blocks = (n + Side - 1) / Side;
     for (int by = 0; by < blocks; ++by)
     {
-        double* acc = rows + (size_t) by * (size_t) width;
-        const int first = by * side, last = std::min(n, first + side);
+        const int first = by * Side;
         const Real* row0 = w + (size_t) first * (size_t) n;
-        for (int ix = 0; ix < n; ++ix)
-            acc[ix] = (double) row0[ix];
-        std::fill(acc + n, acc + width, 0.0);
-        for (int iy = first + 1; iy < last; ++iy)
-        {
-            const Real* row = w + (size_t) iy * (size_t) n;
+        if (first + Side <= n)
             for (int ix = 0; ix < n; ++ix)
-                acc[ix] += (double) row[ix];
+            {
+                double s = (double) row0[ix];
+                for (int r = 1; r < Side; ++r)
+                    s += (double) row0[(size_t) r * (size_t) n + (size_t) ix];
+                acc[ix] = s;
+            }
+        else // the last, short band
+            for (int ix = 0; ix < n; ++ix)
+            {
+                double s = 0.0;
+                for (int r = 0; r < n - first; ++r)
+                    s += (double) row0[(size_t) r * (size_t) n + (size_t) ix];
+                acc[ix] = s;
+            }
+        for (int ix = n; ix < blocks * Side; ++ix)
+            acc[ix] = 0.0;
+        double* o = out + (size_t) by * (size_t) blocks;
+        for (int bx = 0; bx < blocks; ++bx)
+        {
+            double s = acc[bx * Side];
+            for (int c = 1; c < Side; ++c)
+                s += acc[bx * Side + c];
+            o[bx] = s;
         }
     }
 }
-template <int Side>
-SNARESIM_WIDE_VECTOR_CLONES void sumRuns(const double* __restrict rows, int count, double* __restrict out)
-{
-    for (int b = 0; b < count; ++b)
-    {
-        double s = 0.0;
-        for (int c = 0; c < Side; ++c)
-            s += rows[b * Side + c];
-        out[b] = s;
-    }
-}
 template <class Real>
-void blockSums(const Real* w, int n, int side, double* rows, double* out)
+void blockSums(const Real* w, int n, int side, double* acc, double* out)
 {
-    sumBands(w, n, side, rows);
-    const int blocks = (n + side - 1) / side, count = blocks * blocks;
     switch (side)
     {
-        case 1: sumRuns<1>(rows, count, out); return;
-        case 2: sumRuns<2>(rows, count, out); return;
-        case 3: sumRuns<3>(rows, count, out); return;
-        case 4: sumRuns<4>(rows, count, out); return;
-        case 5: sumRuns<5>(rows, count, out); return;
-        case 6: sumRuns<6>(rows, count, out); return;
-        case 7: sumRuns<7>(rows, count, out); return;
-        case 8: sumRuns<8>(rows, count, out); return;
+        case 1: sumBlocks<1>(w, n, acc, out); return;
+        case 2: sumBlocks<2>(w, n, acc, out); return;
+        case 3: sumBlocks<3>(w, n, acc, out); return;
+        case 4: sumBlocks<4>(w, n, acc, out); return;
+        case 5: sumBlocks<5>(w, n, acc, out); return;
+        case 6: sumBlocks<6>(w, n, acc, out); return;
+        case 7: sumBlocks<7>(w, n, acc, out); return;
+        case 8: sumBlocks<8>(w, n, acc, out); return;
         default: break;
     }
-    for (int b = 0; b < count; ++b)
-    {
-        double s = 0.0;
-        for (int c = 0; c < side; ++c)
-            s += rows[b * side + c];
-        out[b] = s;
-    }
+    const int blocks = (n + side - 1) / side;
+    std::fill(out, out + (size_t) blocks * (size_t) blocks, 0.0);
+    for (int iy = 0; iy < n; ++iy)
+        for (int ix = 0; ix < n; ++ix)
+            out[(size_t) (iy / side) * (size_t) blocks + (size_t) (ix / side)] += (double) w[(size_t) iy * (size_t) n + (size_t) ix];
 }
 // The rectangle's second differences in time summed over blocks, in double: a band of side
 // rows into acc (vectorised along the rows), then its runs.
@@ -294,7 +294,42 @@ SNARESIM_WIDE_VECTOR_CLONES void blockSecondDifferences(const Real* __restrict n
         }
     }
 }
+// w at count nodes into out (a gather).
+template <class Real>
+SNARESIM_WIDE_VECTOR_CLONES void gatherNodes(const Real* __restrict w, const int* __restrict nodes, double* __restrict out, int count)
+{
+#pragma omp simd
+    for (int j = 0; j < count; ++j)
+        out[j] = (double) w[nodes[j]];
+}
+// values at count distinct nodes of w (a scatter); returns the change of w's sum.
+template <class Real>
+SNARESIM_WIDE_VECTOR_CLONES double scatterNodes(Real* __restrict w, const int* __restrict nodes, const double* __restrict values, int count)
+{
+    double change = 0.0;
+#pragma omp simd reduction(+ : change)
+    for (int j = 0; j < count; ++j)
+    {
+        const Real v = (Real) values[j];
+        change += (double) v - (double) w[nodes[j]];
+        w[nodes[j]] = v;
+    }
+    return change;
+}
 } // namespace
+
+void Membrane::setNextAt(const int* nodes, const double* values, int count)
+{
+    sumNext += single ? scatterNodes(fNext.data(), nodes, values, count) : scatterNodes(wNext.data(), nodes, values, count);
+}
+
+void Membrane::nextAt(const int* nodes, double* out, int count) const
+{
+    if (single)
+        gatherNodes(fNext.data(), nodes, out, count);
+    else
+        gatherNodes(wNext.data(), nodes, out, count);
+}
 
 // Double: row by row over the disc's runs of interior nodes (nodes outside stay zero, the
 // fixed rim); single: the whole grid at once (updateGridFloat). Both sum w^{n+1} for the

@@ -93,23 +93,10 @@ public:
         wNext[(size_t) node] = value;
     }
     // The same at count distinct nodes.
-    void setNextAt(const int* nodes, const double* values, int count)
-    {
-        if (single)
-            setNextAtIn(fNext.data(), nodes, values, count);
-        else
-            setNextAtIn(wNext.data(), nodes, values, count);
-    }
+    // (Vector gathers and scatters where the CPU has them.)
+    void setNextAt(const int* nodes, const double* values, int count);
     // w^{n+1} at count nodes, into out.
-    void nextAt(const int* nodes, double* out, int count) const
-    {
-        if (single)
-            for (int j = 0; j < count; ++j)
-                out[j] = (double) fNext[(size_t) nodes[j]];
-        else
-            for (int j = 0; j < count; ++j)
-                out[j] = wNext[(size_t) nodes[j]];
-    }
+    void nextAt(const int* nodes, double* out, int count) const;
     // w^{n+1} copied out and back (w sized by the first call), for a step's coupling solved
     // more than once (DrumAir). Double precision only (the air box's heads).
     void saveNext(std::vector<double>& w, double& sum) const
@@ -137,23 +124,6 @@ public:
     bool isFinite() const;
 
 private:
-    template <class Real>
-    void setNextAtIn(Real* w, const int* nodes, const double* values, int count)
-    {
-        double c0 = 0.0, c1 = 0.0;
-        int j = 0;
-        for (; j + 2 <= count; j += 2)
-        {
-            const Real v0 = (Real) values[j], v1 = (Real) values[j + 1];
-            c0 += (double) v0 - (double) w[nodes[j]];
-            c1 += (double) v1 - (double) w[nodes[j + 1]];
-        }
-        for (; j < count; ++j)
-            c0 += (double) (Real) values[j] - (double) w[nodes[j]];
-        for (j = 0; j < count; ++j)
-            w[nodes[j]] = (Real) values[j];
-        sumNext += c0 + c1;
-    }
     // f(next, now, prev) on the state arrays in their precision.
     template <class F>
     decltype(auto) withState(F&& f) const
@@ -182,7 +152,7 @@ private:
     std::vector<float> fMask;               // single precision: the grid's mask
     std::vector<float> fX, fY;              // single precision: x and y times the mask
     std::vector<double> dX, dY;             // double precision: the same
-    mutable std::vector<double> dRowScratch; // the grid's bands of rows summed, for blockVolumesNext
+    mutable std::vector<double> dRowScratch; // a band of rows summed, for blockVolumesNext
     mutable std::vector<double> accScratch;  // a row, for blockAccelerationsIn
 };
 

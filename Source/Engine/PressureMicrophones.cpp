@@ -1,6 +1,7 @@
 #include "PressureMicrophones.h"
 
 #include "Membrane.h"
+#include "VectorClones.h"
 
 #include <algorithm>
 #include <cmath>
@@ -47,6 +48,60 @@ bool interiorCentre(const CircularGrid& g, int ix0, int ix1, int iy0, int iy1, d
     x = sx / count;
     y = sy / count;
     return true;
+}
+
+// A microphone's runs of taps, a run per whole delay d from `slot`: now * A[cell] summed into
+// ring sample slot + d and next * A[cell] into the one after, lane by lane (Lanes floats a
+// sample). Each run holds whole vectors of Lanes taps (padded): a vector at a time (gathers),
+// no sum across the lanes here.
+template <int Lanes>
+SNARESIM_WIDE_VECTOR_CLONES void sumTapRuns(int delays, const int* __restrict runEnd, const int* __restrict cell,
+                                            const float* __restrict now, const float* __restrict next,
+                                            const float* __restrict A, float* __restrict ring, size_t slot, size_t mask)
+{
+    int t = 0;
+    for (int d = 0; d < delays; ++d, ++slot)
+    {
+        float s0[Lanes] = {}, s1[Lanes] = {};
+        for (const int end = runEnd[d]; t < end; t += Lanes)
+        {
+#pragma omp simd
+            for (int j = 0; j < Lanes; ++j)
+            {
+                const float a = A[cell[t + j]];
+                s0[j] += now[t + j] * a;
+                s1[j] += next[t + j] * a;
+            }
+        }
+        float* r0 = ring + (slot & mask) * Lanes;
+        float* r1 = ring + ((slot + 1) & mask) * Lanes;
+#pragma omp simd
+        for (int j = 0; j < Lanes; ++j)
+        {
+            r0[j] += s0[j];
+            r1[j] += s1[j];
+        }
+    }
+}
+
+// The cells' A^n = sign (V^{n+1} - 2 V^n + V^{n-1}) / k^2 from their blocks' volumes at n+1,
+// the volumes moved on a step; returns the whole head's A^n.
+SNARESIM_WIDE_VECTOR_CLONES double cellAccelerations(int cells, const int* __restrict block, const double* __restrict blockVolume,
+                                                     double sign, double inverseKk, double* __restrict vNow,
+                                                     double* __restrict vPrev, double* __restrict accel)
+{
+    double whole = 0.0;
+#pragma omp simd reduction(+ : whole)
+    for (int j = 0; j < cells; ++j)
+    {
+        const double v = sign * blockVolume[block[j]];
+        const double a = (v - 2.0 * vNow[j] + vPrev[j]) * inverseKk; // A^n
+        vPrev[j] = vNow[j];
+        vNow[j] = v;
+        accel[j] = a;
+        whole += a;
+    }
+    return whole;
 }
 
 // Kirchhoff's obliquity (1 + cos theta) / 2 blended in by `far` (0 near the head: 1).
@@ -104,15 +159,17 @@ PressureMicrophones::PressureMicrophones(const DrumConfig& cfg, const Membrane& 
     }
     for (Listener& l : mics)
     {
-        l.sources.resize(most + 1 + nearMost);
-        l.cell.resize(most + nearMost);
-        l.now.resize(most + nearMost);
-        l.next.resize(most + nearMost);
+        l.sources.assign(most + 1 + nearMost + 1, 0.0f); // the last stays 0: the padding's source
+        l.fine.assign(nearMost, 0.0);
+        const size_t padded = most + nearMost + (size_t) rows * (size_t) (kLanes - 1); // each run padded
+        l.cell.resize(padded);
+        l.now.resize(padded);
+        l.next.resize(padded);
         l.taps.resize(most + nearMost);
         l.tapCell.resize(most + nearMost);
         l.runEnd.resize((size_t) rows);
         l.count.resize((size_t) rows);
-        l.direct.assign((size_t) rows, 0.0);
+        l.direct.assign((size_t) rows * kLanes, 0.0f);
         l.around.assign((size_t) rows, 0.0);
     }
     setPositions(cfg.mics, H);
@@ -153,7 +210,7 @@ void PressureMicrophones::place(Listener& l, const AirPoint& p) noexcept
     l.nearRows = by1 >= by0 ? std::min(g.width(), (by1 + 1) * f.side) - l.nearY : 0;
     const int fineColumns = (l.nearColumns + f.fine - 1) / f.fine, fineRows = (l.nearRows + f.fine - 1) / f.fine;
     l.nearCells = fineColumns * fineRows;
-    if ((size_t) (f.cells + 1 + l.nearCells) > l.sources.size()) // cannot happen (the capacity is the largest square)
+    if ((size_t) (f.cells + 1 + l.nearCells + 1) > l.sources.size()) // cannot happen (the capacity is the largest square)
         l.nearCells = 0, l.nearColumns = l.nearRows = 0, bx1 = bx0 - 1;
     int lo = rows, hi = 0;
     int cellTaps = 0;
@@ -186,26 +243,32 @@ void PressureMicrophones::place(Listener& l, const AirPoint& p) noexcept
         const double r = std::max(1e-3, distance(cx, cy, f.z, p));
         add(tapAt(r, rho / (2.0 * std::numbers::pi) * meanInverseOver(cx, cy, f.z, w, r, p) * obliquityAt(r, far, f.z, p)), j);
     }
-    // counting sort of the taps by their whole delays
+    // counting sort of the taps by their whole delays, each run padded to whole vectors with
+    // taps of no gain on the zero source
     l.firstDelay = cellTaps > 0 ? lo : 0;
     l.delays = cellTaps > 0 ? hi - lo + 1 : 0;
     std::fill(l.count.begin(), l.count.begin() + l.delays, 0);
     for (int j = 0; j < cellTaps; ++j)
         ++l.count[(size_t) (l.taps[(size_t) j].delay - lo)];
+    const int zero = (int) l.sources.size() - 1;
     int end = 0;
     for (int d = 0; d < l.delays; ++d)
     {
-        end += l.count[(size_t) d];
+        const int begin = end;
+        end += (l.count[(size_t) d] + kLanes - 1) / kLanes * kLanes;
+        std::fill(l.cell.begin() + begin, l.cell.begin() + end, zero);
+        std::fill(l.now.begin() + begin, l.now.begin() + end, 0.0f);
+        std::fill(l.next.begin() + begin, l.next.begin() + end, 0.0f);
         l.runEnd[(size_t) d] = end;
-        l.count[(size_t) d] = end - l.count[(size_t) d]; // the run's next free slot
+        l.count[(size_t) d] = begin; // the run's next free slot
     }
     for (int j = 0; j < cellTaps; ++j)
     {
         const Tap& t = l.taps[(size_t) j];
         const int slot = l.count[(size_t) (t.delay - lo)]++;
         l.cell[(size_t) slot] = l.tapCell[(size_t) j];
-        l.now[(size_t) slot] = t.gain * (1.0 - t.frac);
-        l.next[(size_t) slot] = t.gain * t.frac;
+        l.now[(size_t) slot] = (float) (t.gain * (1.0 - t.frac));
+        l.next[(size_t) slot] = (float) (t.gain * t.frac);
     }
 
     // The whole-head terms come from the rim (the edge the baffle lacks): the mean of 1/d over
@@ -253,17 +316,8 @@ void PressureMicrophones::listen(const Membrane& batter, const Membrane& carry) 
     {
         Head& h = heads[(size_t) hi];
         membranes[hi]->blockVolumesNext(h.side, h.blockVolume.data());
-        double whole = 0.0;
-        for (int j = 0; j < h.cells; ++j)
-        {
-            const double v = h.sign * h.blockVolume[(size_t) h.block[(size_t) j]];
-            const double a = (v - 2.0 * h.vNow[(size_t) j] + h.vPrev[(size_t) j]) * inverseKk; // A^n
-            h.vPrev[(size_t) j] = h.vNow[(size_t) j];
-            h.vNow[(size_t) j] = v;
-            h.accel[(size_t) j] = a;
-            whole += a;
-        }
-        h.accel[(size_t) h.cells] = whole;
+        h.accel[(size_t) h.cells] = cellAccelerations(h.cells, h.block.data(), h.blockVolume.data(), h.sign, inverseKk, h.vNow.data(),
+                                                      h.vPrev.data(), h.accel.data());
     }
     const size_t mask = (size_t) rows - 1;
     for (int m = 0; m < numMics; ++m)
@@ -271,35 +325,29 @@ void PressureMicrophones::listen(const Membrane& batter, const Membrane& carry) 
         Listener& l = mics[(size_t) m];
         const Head& f = heads[(size_t) l.facing];
         // the sources: the facing head's cells and whole, then the fine cells near the microphone
-        double* A = l.sources.data();
-        std::copy(f.accel.begin(), f.accel.end(), A);
+        float* A = l.sources.data();
+        for (int j = 0; j <= f.cells; ++j)
+            A[j] = (float) f.accel[(size_t) j];
         if (l.nearCells > 0)
         {
-            double* fine = A + f.cells + 1;
+            double* fine = l.fine.data();
             membranes[l.facing]->blockAccelerationsIn(f.fine, l.nearX, l.nearY, l.nearColumns, l.nearRows, fine);
             for (int i = 0; i < l.nearCells; ++i)
-                fine[i] *= inverseKk;
+                A[f.cells + 1 + i] = (float) (fine[i] * inverseKk);
         }
-        int t = 0;
-        for (int d = 0; d < l.delays; ++d)
-        {
-            double s0 = 0.0, s1 = 0.0;
-            for (const int end = l.runEnd[(size_t) d]; t < end; ++t)
-            {
-                const double a = A[l.cell[(size_t) t]];
-                s0 += l.now[(size_t) t] * a;
-                s1 += l.next[(size_t) t] * a;
-            }
-            const size_t slot = (size_t) pos + (size_t) (l.firstDelay + d);
-            l.direct[slot & mask] += s0;
-            l.direct[(slot + 1) & mask] += s1;
-        }
-        push(l.around, l.facingWhole, A[f.cells]);
+        sumTapRuns<kLanes>(l.delays, l.runEnd.data(), l.cell.data(), l.now.data(), l.next.data(), A, l.direct.data(),
+                           (size_t) pos + (size_t) l.firstDelay, mask);
+        push(l.around, l.facingWhole, f.accel[(size_t) f.cells]);
         const Head& o = heads[(size_t) (1 - l.facing)];
         push(l.around, l.otherWhole, o.accel[(size_t) o.cells]);
         const size_t here = (size_t) pos & mask;
-        const double p = l.direct[here], x = l.around[here];
-        l.direct[here] = l.around[here] = 0.0;
+        float* lanes = l.direct.data() + here * kLanes;
+        double p = 0.0;
+        for (int j = 0; j < kLanes; ++j)
+            p += (double) lanes[j];
+        std::fill(lanes, lanes + kLanes, 0.0f);
+        const double x = l.around[here];
+        l.around[here] = 0.0;
         l.lowPass += alpha * (x - l.lowPass);
         out[(size_t) m] = p + l.lowPass;
     }
@@ -316,7 +364,7 @@ void PressureMicrophones::clear() noexcept
     }
     for (Listener& l : mics)
     {
-        std::fill(l.direct.begin(), l.direct.end(), 0.0);
+        std::fill(l.direct.begin(), l.direct.end(), 0.0f);
         std::fill(l.around.begin(), l.around.end(), 0.0);
         l.lowPass = 0.0;
     }

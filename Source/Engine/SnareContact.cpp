@@ -171,6 +171,22 @@ SNARESIM_WIDE_VECTOR_CLONES void hertzCoefficients(int count, const int* __restr
     }
 }
 
+// to[index[t]] = from[t] for count distinct indices (a scatter).
+SNARESIM_WIDE_VECTOR_CLONES void scatterPoints(int count, const int* __restrict index, const double* __restrict from, double* __restrict to)
+{
+#pragma omp simd
+    for (int t = 0; t < count; ++t)
+        to[index[t]] = from[t];
+}
+// out[t] = scale * from[index[t]] (a gather).
+SNARESIM_WIDE_VECTOR_CLONES void gatherScaled(int count, const int* __restrict index, const double* __restrict from, double scale,
+                                              double* __restrict out)
+{
+#pragma omp simd
+    for (int t = 0; t < count; ++t)
+        out[t] = scale * from[index[t]];
+}
+
 // Per point, its group's S and W at S[k] and W[k] (one member of a class): the force
 // f = alpha - beta S, the wire u = u* - gammaS f, the gap xi^{n+1} = u - W and psi at n+1/2;
 // `dropped` gets psi^2 where psi is reset.
@@ -265,8 +281,10 @@ SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wire
     const double gain = carry.forceGain() / (h * h); // w_c^{n+1} per unit force (N) at a node, times its response
     const double* response = carry.responseScale();
     carry.nextAt(groupNode.data(), groupW0.data(), numGroups);
-    for (int g = 0; g < numGroups; ++g)
-        groupCc[(size_t) g] = response ? gain * response[groupNode[(size_t) g]] : gain;
+    if (response)
+        gatherScaled(numGroups, groupNode.data(), response, gain, groupCc.data());
+    else
+        std::fill(groupCc.begin(), groupCc.begin() + numGroups, gain);
     for (int g : endGroups)
         eliminateEnds(g, carry, wires, groupCc[(size_t) g], groupW0[(size_t) g], groupCc[(size_t) g]);
 
@@ -319,8 +337,7 @@ SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wire
                          groupW.data() + g0, gammaS, xiPrev.data() + t0, xiNow.data() + t0, uFree.data() + t0,
                          xiNext.data() + t0, psiQ.data() + t0, dropped.data() + t0);
         }
-    for (int t = 0; t < n; ++t)
-        u[pointWireNode[(size_t) t]] = uFree[(size_t) t];
+    scatterPoints(n, pointWireNode.data(), uFree.data(), u);
 
     SnareSolveResult result;
     const double sumRemoved = summarise(n, xiNext.data(), dropped.data(), result.maxPenetration_m, result.contacts);
