@@ -111,24 +111,21 @@ template <bool Tilt>
 SNARESIM_WIDE_VECTOR_CLONES double updateRow(double* __restrict out, const double* __restrict w, const double* __restrict wp,
                                         int n, int count, double c0, double c1, double d0, double d1, double push, double slope)
 {
+    double sum = 0.0; // summed on the way (vector lanes)
+#pragma omp simd reduction(+ : sum)
     for (int m = 0; m < count; ++m)
     {
         const double nb = w[m - 1] + w[m + 1] + w[m - n] + w[m + n];
         const double nbp = wp[m - 1] + wp[m + 1] + wp[m - n] + wp[m + n];
+        double next;
         if constexpr (Tilt)
-            out[m] = c0 * w[m] + c1 * nb + d0 * wp[m] + d1 * nbp + (push + slope * (double) m);
+            next = c0 * w[m] + c1 * nb + d0 * wp[m] + d1 * nbp + (push + slope * (double) m);
         else
-            out[m] = c0 * w[m] + c1 * nb + d0 * wp[m] + d1 * nbp + push;
+            next = c0 * w[m] + c1 * nb + d0 * wp[m] + d1 * nbp + push;
+        out[m] = next;
+        sum += next;
     }
-    // the row is in L1 now: sum it in four running sums
-    double acc[4] = {};
-    int m = 0;
-    for (; m + 4 <= count; m += 4)
-        for (int j = 0; j < 4; ++j)
-            acc[j] += out[m + j];
-    for (; m < count; ++m)
-        acc[0] += out[m];
-    return (acc[0] + acc[2]) + (acc[1] + acc[3]);
+    return sum;
 }
 
 // Eq. (22) in single precision over the whole padded grid, row after row without a break
@@ -145,29 +142,23 @@ SNARESIM_WIDE_VECTOR_CLONES double updateGridFloat(float* __restrict out, const 
                                                    const float* __restrict ys, int n, int count, float r, float cl, float cs,
                                                    float push, float px, float py)
 {
+    double sum = 0.0; // summed on the way, in double (vector lanes: the order is not the rows')
+#pragma omp simd reduction(+ : sum)
     for (int m = 0; m < count; ++m)
     {
         const float c = w[m], v = c - wp[m];
         const float nb = w[m - 1] + w[m + 1] + w[m - n] + w[m + n];
         const float nbp = wp[m - 1] + wp[m + 1] + wp[m - n] + wp[m + n];
+        float next;
         if constexpr (Tilt)
-            out[m] = mask[m] * (c + (r * v + cl * (nb - 4.0f * c) + cs * ((nb - nbp) - 4.0f * v) + push))
-                   + (px * xs[m] + py * ys[m]);
+            next = mask[m] * (c + (r * v + cl * (nb - 4.0f * c) + cs * ((nb - nbp) - 4.0f * v) + push))
+                 + (px * xs[m] + py * ys[m]);
         else
-            out[m] = mask[m] * (c + (r * v + cl * (nb - 4.0f * c) + cs * ((nb - nbp) - 4.0f * v) + push));
+            next = mask[m] * (c + (r * v + cl * (nb - 4.0f * c) + cs * ((nb - nbp) - 4.0f * v) + push));
+        out[m] = next;
+        sum += (double) next;
     }
-    // sixteen running sums: two vectors of doubles per vector of floats, and enough of them
-    // that the adds' latency does not bind
-    double acc[16] = {};
-    int m = 0;
-    for (; m + 16 <= count; m += 16)
-        for (int j = 0; j < 16; ++j)
-            acc[j] += (double) out[m + j];
-    for (; m < count; ++m)
-        acc[0] += (double) out[m];
-    for (int j = 1; j < 16; ++j)
-        acc[0] += acc[j];
-    return acc[0];
+    return sum;
 }
 // sum(xs w), sum(ys w) over count nodes, in double, in sixteen running sums each (the adds'
 // latency would bind a single sum).
