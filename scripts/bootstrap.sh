@@ -54,6 +54,10 @@ case "$mode" in
     # the suite's test of scripts/snare_features.py (numpy, scipy; soundfile reads FLAC)
     test|sanitize) packages+=(python3-numpy python3-scipy python3-soundfile) ;;
 esac
+case "$mode" in
+    # recorded snare drums: the suite holds the factory presets against them
+    test) packages+=(hydrogen-drumkits) ;;
+esac
 
 missing=()
 for pkg in "${packages[@]}"; do

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Every factory preset's strike beside the recorded snare drums: a Markdown table (numpy, scipy).
 
-    python3 scripts/preset_table.py [--build build] [--work DIR] [--seconds 1.5] [--json] [--presets P,P,...]
+    python3 scripts/preset_table.py [--build build] [--work DIR] [--seconds 1.5] [--json] [--presets P,P,...] [--check]
 
 Each factory preset (the renderer's --help lists them) is struck once at velocities 60, 100 and
 127 as the plug-in plays it: snaresim-render --preset NAME --hit 0:VELOCITY, the default model
@@ -20,6 +20,8 @@ Checks, per row:
     velocity): at least 2.5 or not
 A preset plays with its snares off when its render equals the one with snares_engaged=off.
 
+--check: exit status 1 when a checked value lies outside its window or a ratio under 2.5 (the
+table is printed either way), and 77 (the test suite's "skipped") when the recordings are missing.
 --presets chooses the presets: names or preset files (a file's rows are named after it), for
 trying a preset before it becomes a factory one.
 --work DIR keeps the renders there and uses those it finds (delete them after a change of the
@@ -145,6 +147,8 @@ def main():
     parser.add_argument('--work', default=None, help='keep the renders in this folder and use those found there')
     parser.add_argument('--seconds', type=float, default=1.5, help='length of each render (default 1.5)')
     parser.add_argument('--json', action='store_true', help='one JSON object instead of the Markdown tables')
+    parser.add_argument('--check', action='store_true',
+                        help='exit 1 if a preset fails a check, 77 if the recordings are missing')
     parser.add_argument('--presets', default=None,
                         help='comma-separated preset names or preset files (default: every factory preset)')
     args = parser.parse_args()
@@ -162,7 +166,7 @@ def main():
         if sets is None:
             print('preset_table.py: no recordings for %s in %s (apt-get install hydrogen-drumkits)'
                   % (missing, airbox_figures.KITS), file=sys.stderr)
-            return 2
+            return 77 if args.check else 2
         if args.work:
             os.makedirs(args.work, exist_ok=True)
             rows = measure(render, args.work, args.seconds, True, chosen)
@@ -186,11 +190,14 @@ def main():
         row['centroid_over_snares_off'] = ratio
         row['centroid_over_snares_off_ok'] = None if ratio is None else ratio >= RATIO
 
+    failing = [r for r in rows
+               if any(r['checks'][k] in ('low', 'high') for k in TARGETS) or r['centroid_over_snares_off_ok'] is False]
+    status = 1 if args.check and failing else 0
     if args.json:
         print(json.dumps({'seconds': args.seconds, 'sample_rate_hz': RATE, 'velocities': VELOCITIES,
                           'margin': MARGIN, 'ratio': RATIO, 'rows': rows, 'recordings': sets,
                           'windows': windows}, indent=1))
-        return 0
+        return status
 
     def show(v, fmt):
         return 'n/a' if v is None else fmt % v
@@ -233,7 +240,10 @@ def main():
           % (RATIO, ok, total))
     print('Rendered %s s at %d Hz, --mic mix, the default model; %s.'
           % ('%g' % args.seconds, RATE, datetime.date.today().isoformat()))
-    return 0
+    if args.check:
+        print('Check: %s' % ('every row passes' if not failing else '%d rows fail: %s' % (
+            len(failing), ', '.join('%s at %d' % (r['preset'], r['velocity']) for r in failing))))
+    return status
 
 
 if __name__ == '__main__':

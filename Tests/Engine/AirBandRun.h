@@ -51,11 +51,12 @@ inline double sigmaDecay_dB_per_s(double f_Hz, double sigma_m, double sampleRate
     return 20.0 * std::log10(std::exp(1.0)) * -std::log(1.0 - b) / (2.0 * k);
 }
 
-// The default batter (T = 3050 N/m, its default losses, which damp its own modes near 8 kHz
-// within a few ms) on the grid of its stability bound, so that its band reaches Nyquist.
+// The default batter (T = 3050 N/m) with sigma1 = 1e-3 m^2/s, which damps its own modes near
+// 8 kHz within a few ms, on the grid of its stability bound, so that its band reaches Nyquist.
 inline MembraneSpec bandBatter(double sampleRate_Hz)
 {
     MembraneSpec s = makeDrumConfig(ParameterSet {}, sampleRate_Hz).batter;
+    s.sigma1_m2_per_s = 1.0e-3;
     s.gridTension_N_per_m = 0.0;
     s.gridSigma1_m2_per_s = -1.0;
     s.gridCoarseness = 1.0;

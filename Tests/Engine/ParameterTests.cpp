@@ -46,7 +46,9 @@ TEST_CASE("the defaults give the 14 x 5.5 inch drum of docs/MODEL.md", "[paramet
     CHECK(c.batter.tension_N_per_m == 3050.0);
     CHECK(c.batter.density_kg_per_m2 == Approx(0.353));
     CHECK(c.mallet.mass_kg == 0.028);
-    CHECK(c.batter.sigma0_per_s == Approx(3.0 * std::log(10.0) / (4.0 * std::pow(0.15 / 4.0, 0.25))));
+    CHECK(c.batter.sigma0_per_s == Approx(3.0 * std::log(10.0) / (4.0 * std::pow(0.15 / 4.0, 0.75)))); // damping 75 %
+    CHECK(c.mallet.stiffness == 4.0e9);
+    CHECK(c.batter.sigma1_m2_per_s == Approx(2.1e-4));
     // The grid is designed for the largest tension the control allows.
     CHECK(c.batter.gridTension_N_per_m == spec(ParamId::batterTension).maxValue);
     // Real time by default: the quadratised snare solve, heads and wires at twice the bound.

@@ -137,14 +137,15 @@ TEST_CASE("factory presets: read from their files, in program order, each differ
         texts.insert(text.substr(text.find('\n', text.find("name ="))));
     }
     CHECK(texts.size() == presets.size());
-    CHECK(presets[0].values.empty()); // Studio Default: the defaults
+    for (const auto& [id, value] : presets[0].values) // Studio Default: the defaults
+        CHECK(value == Approx(spec(id).defaultValue));
 
     ParameterSet funk;
     REQUIRE(applyPreset("tight funk", funk));
     CHECK(funk.get(ParamId::batterTension) == 4800.0);
-    CHECK(funk.get(ParamId::snareTension) == 55.0);
-    CHECK(funk.get(ParamId::damping) == 45.0);
-    CHECK(funk.get(ParamId::malletStiffness) == 3.0e8);
+    CHECK(funk.get(ParamId::snareTension) == 44.5);
+    CHECK(funk.get(ParamId::damping) == 75.0);
+    CHECK(funk.get(ParamId::malletStiffness) == 1.88e9);
     ParameterSet off;
     REQUIRE(applyPreset("Snares Off", off));
     CHECK(off.get(ParamId::snaresEngaged) == 0.0);

@@ -296,7 +296,7 @@ TEST_CASE ("MIDI floods: 1000 notes in a block, every note and velocity, running
 
     CHECK (finite);
     CHECK (peak > 0.0f);
-    CHECK (peak < 64.0f);
+    CHECK (peak < 128.0f); // loose: a flood of fortissimo strikes on the default mix stays within 42 dB of full scale
     CHECK (proc.getNonFiniteResets() == 0);
 
     std::cout << "MIDI floods: " << events << " events in " << blocks << " blocks of 64 samples at 48 kHz; worst block "

@@ -404,7 +404,7 @@ TEST_CASE ("a version-1 state loads with its values mapped", "[processor][state]
     CHECK (snaresim::dampingFromT60 (0.15) == Approx (100.0));
     CHECK (snaresim::dampingFromT60 (10.0) == 0.0);
     CHECK (snaresim::dampingFromT60 (0.1) == 100.0);
-    CHECK (snaresim::dampingFromT60 (std::numeric_limits<double>::quiet_NaN()) == 25.0);
+    CHECK (snaresim::dampingFromT60 (std::numeric_limits<double>::quiet_NaN()) == snaresim::spec (ParamId::damping).defaultValue);
 
     for (const int version : { 1, 0 })
     {
@@ -447,8 +447,8 @@ TEST_CASE ("a version-1 state loads with its values mapped", "[processor][state]
         CHECK (p.get (ParamId::outputGain) == Approx (12.0));
         CHECK (p.get (ParamId::snareCount) == 1.0);
         CHECK (p.get (ParamId::malletMass) == Approx (0.028));
-        CHECK (p.get (ParamId::snareTension) == Approx (30.0));
-        CHECK (p.get (ParamId::micRoom) == Approx (0.2));
+        CHECK (p.get (ParamId::snareTension) == Approx (snaresim::spec (ParamId::snareTension).defaultValue));
+        CHECK (p.get (ParamId::micRoom) == Approx (snaresim::spec (ParamId::micRoom).defaultValue));
 
         // And it plays, as the engine's drum with those values.
         prepare (proc, 48000.0, 256);
@@ -468,7 +468,7 @@ TEST_CASE ("a version-1 state loads with its values mapped", "[processor][state]
     juce::MemoryBlock state;
     juce::AudioProcessor::copyXmlToBinary (v2, state);
     proc.setStateInformation (state.getData(), (int) state.getSize());
-    CHECK (proc.currentParameters().get (ParamId::damping) == Approx (25.0));
+    CHECK (proc.currentParameters().get (ParamId::damping) == Approx (snaresim::spec (ParamId::damping).defaultValue));
 }
 
 TEST_CASE ("garbage states never crash", "[processor][state]")
