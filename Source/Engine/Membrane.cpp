@@ -68,14 +68,14 @@ Membrane::Membrane(const MembraneSpec& s, double timeStep, double reserve)
         }
     if (single)
     {
-        dRowScratch.assign((size_t) n + 8, 0.0); // a band's row: blocks of up to 8 nodes
+        dRowScratch.assign((size_t) (2 * n), 0.0); // a band's row: whole blocks of up to n nodes
         accScratch.assign((size_t) n, 0.0);
         fX.assign(xs.begin(), xs.end());
         fY.assign(ys.begin(), ys.end());
     }
     else
     {
-        dRowScratch.assign((size_t) n + 8, 0.0); // a band's row: blocks of up to 8 nodes
+        dRowScratch.assign((size_t) (2 * n), 0.0); // a band's row: whole blocks of up to n nodes
         accScratch.assign((size_t) n, 0.0);
         dX = std::move(xs);
         dY = std::move(ys);
@@ -227,6 +227,31 @@ SNARESIM_WIDE_VECTOR_CLONES void sumBlocks(const Real* __restrict w, int n, doub
         }
     }
 }
+// The same for any side (fine grids: 96 kHz), the band's rows added one after another.
+template <class Real>
+SNARESIM_WIDE_VECTOR_CLONES void sumBlocksOfSide(const Real* __restrict w, int n, int side, double* __restrict acc, double* __restrict out)
+{
+    const int blocks = (n + side - 1) / side;
+    for (int by = 0; by < blocks; ++by)
+    {
+        const int first = by * side, last = std::min(n, first + side);
+        std::fill(acc, acc + (size_t) blocks * (size_t) side, 0.0);
+        for (int iy = first; iy < last; ++iy)
+        {
+            const Real* row = w + (size_t) iy * (size_t) n;
+            for (int ix = 0; ix < n; ++ix)
+                acc[ix] += (double) row[ix];
+        }
+        double* o = out + (size_t) by * (size_t) blocks;
+        for (int bx = 0; bx < blocks; ++bx)
+        {
+            double s = 0.0;
+            for (int c = 0; c < side; ++c)
+                s += acc[bx * side + c];
+            o[bx] = s;
+        }
+    }
+}
 template <class Real>
 void blockSums(const Real* w, int n, int side, double* acc, double* out)
 {
@@ -242,11 +267,7 @@ void blockSums(const Real* w, int n, int side, double* acc, double* out)
         case 8: sumBlocks<8>(w, n, acc, out); return;
         default: break;
     }
-    const int blocks = (n + side - 1) / side;
-    std::fill(out, out + (size_t) blocks * (size_t) blocks, 0.0);
-    for (int iy = 0; iy < n; ++iy)
-        for (int ix = 0; ix < n; ++ix)
-            out[(size_t) (iy / side) * (size_t) blocks + (size_t) (ix / side)] += (double) w[(size_t) iy * (size_t) n + (size_t) ix];
+    sumBlocksOfSide(w, n, side, acc, out);
 }
 // The rectangle's second differences in time summed over blocks, in double: a band of side
 // rows into acc (vectorised along the rows), then its runs.
