@@ -149,3 +149,35 @@ TEST_CASE("the product's grids keep the low batter modes at the Bessel frequenci
         CHECK(modes[(size_t) i] == Approx(ideal).epsilon(0.005));
     }
 }
+
+TEST_CASE("the heads' block volumes equal the plain sums over their blocks, any side, either precision", "[membrane][mics]")
+{
+    for (const HeadPrecision precision : { HeadPrecision::double_precision, HeadPrecision::single_precision })
+    {
+        DrumConfig cfg = test::losslessHead();
+        cfg.batter.precision = precision;
+        Membrane head(cfg.batter, 1.0 / cfg.sampleRate_Hz);
+        const CircularGrid& g = head.grid();
+        const int n = g.width();
+        // a displacement with structure at every scale: w = x + 2 y^2 + a ripple, on the disc
+        for (int iy = 0; iy < n; ++iy)
+            for (int ix = 0; ix < n; ++ix)
+            {
+                const int i = g.index(ix, iy);
+                if (g.mask()[(size_t) i] > 0.5)
+                    head.setNextAt(i, 1e-4 * (g.x(ix) + 2.0 * g.x(iy) * g.x(iy) + 0.01 * std::sin(ix * 1.3 + iy * 0.7)));
+            }
+        for (int side = 1; side <= 13; ++side) // 1-8 have their own loops, the others share one
+        {
+            INFO("side " << side << (precision == HeadPrecision::single_precision ? ", single" : ", double"));
+            const int blocks = (n + side - 1) / side;
+            std::vector<double> got((size_t) (blocks * blocks)), expected((size_t) (blocks * blocks), 0.0);
+            head.blockVolumesNext(side, got.data());
+            for (int iy = 0; iy < n; ++iy)
+                for (int ix = 0; ix < n; ++ix)
+                    expected[(size_t) ((iy / side) * blocks + ix / side)] += head.nextAt(g.index(ix, iy)) * g.spacing() * g.spacing();
+            for (size_t b = 0; b < got.size(); ++b)
+                CHECK(got[b] == Approx(expected[b]).margin(1e-18));
+        }
+    }
+}
