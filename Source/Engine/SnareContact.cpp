@@ -87,7 +87,7 @@ SnareContact::SnareContact(const SnareSpec& spec, SnareWires& wires, Membrane& c
     wireInterior = M - 1;
     for (auto* v : { &groupW0, &groupCc, &groupS, &groupW })
         v->assign(groupNode.size(), 0.0);
-    for (auto* v : { &gq, &alphaQ, &betaQ, &uFree, &dropped })
+    for (auto* v : { &gq, &alphaQ, &betaQ, &uFree, &dropped, &pointW0, &pointCc, &pointS, &pointW })
         v->assign(numPoints, 0.0);
     psiQ.assign(numPoints, 0.0);
     trialPsi = psiQ;
@@ -134,8 +134,8 @@ void SnareContact::eliminateEnds(int g, const Membrane& carry, const SnareWires&
 namespace
 {
 // The per-point coefficients of the quadratised solve for the Hertz exponent (beta = 1.5, so
-// psi = psiScale xi^(5/4)), for `count` points whose groups' W0 and cc are W0[k] and cc[k] (one
-// member of a class: its points and its groups run in step), branch-free so that it
+// psi = psiScale xi^(5/4)), for `count` points whose groups' W0 and cc are W0[k] and cc[k] (the
+// groups' values copied beside their points), branch-free so that it
 // vectorises. xi* = u* - W0 is the prediction (no contact force); g is the secant of psi from
 // xi^{n-1} to xi*. While both touch, with x, y their fourth roots, it is
 // (y^5 - x^5) / (y^4 - x^4) = (x^4 + x^3 y + x^2 y^2 + x y^3 + y^4) / ((x + y)(x^2 + y^2)):
@@ -187,7 +187,7 @@ SNARESIM_WIDE_VECTOR_CLONES void gatherScaled(int count, const int* __restrict i
         out[t] = scale * from[index[t]];
 }
 
-// Per point, its group's S and W at S[k] and W[k] (one member of a class): the force
+// Per point, its group's S and W at S[k] and W[k] (copied beside the points): the force
 // f = alpha - beta S, the wire u = u* - gammaS f, the gap xi^{n+1} = u - W and psi at n+1/2;
 // `dropped` gets psi^2 where psi is reset.
 SNARESIM_WIDE_VECTOR_CLONES void finishPoints(int count, const double* __restrict alpha, const double* __restrict beta,
@@ -267,6 +267,13 @@ SNARESIM_VECTOR_CLONES double summarise(int n, const double* __restrict xi, cons
 }
 } // namespace
 
+void SnareContact::expandToPoints(const double* perGroup, double* perPoint) const
+{
+    for (const SizeClass& c : classes)
+        for (int j = 0; j < c.size; ++j)
+            std::memcpy(perPoint + c.pointBegin + j * c.groupCount, perGroup + c.groupBegin, sizeof(double) * (size_t) c.groupCount);
+}
+
 SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wires)
 {
     // Every group is solved every step: where a group's points are apart at n-1 and stay apart
@@ -295,28 +302,25 @@ SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wire
     // xi^{n+1} = xi* - gammaS f - cc h_s S, S = sum f over the group. Eliminating xi^{n+1}:
     // f = alpha - beta S with alpha = (A + B xi*) / (1 + gammaS B), beta = cc h_s B / (1 + gammaS B).
     const int n = (int) pointWireNode.size();
-    for (const SizeClass& c : classes)
-        for (int j = 0; j < c.size; ++j)
+    // Each point's group's W0 and c' beside it (member j of a class holds the class's groups in
+    // order: a copy per member), so that every per-point loop runs once over all points.
+    expandToPoints(groupW0.data(), pointW0.data());
+    expandToPoints(groupCc.data(), pointCc.data());
+    if (quarterPower)
+        hertzCoefficients(n, pointWireNode.data(), xiPrev.data(), u, psiQ.data(), pointW0.data(), pointCc.data(), hs, psiScale,
+                          gammaS, gq.data(), alphaQ.data(), betaQ.data(), uFree.data());
+    else
+        for (int t = 0; t < n; ++t)
         {
-            const int t0 = c.pointBegin + j * c.groupCount, g0 = c.groupBegin, count = c.groupCount;
-            if (quarterPower)
-                hertzCoefficients(count, pointWireNode.data() + t0, xiPrev.data() + t0, u, psiQ.data() + t0, groupW0.data() + g0,
-                                  groupCc.data() + g0, hs, psiScale, gammaS, gq.data() + t0, alphaQ.data() + t0,
-                                  betaQ.data() + t0, uFree.data() + t0);
-            else
-                for (int i = 0; i < count; ++i)
-                {
-                    const size_t t = (size_t) (t0 + i), gi = (size_t) (g0 + i);
-                    const double us = u[pointWireNode[t]], a = xiPrev[t];
-                    const double predicted = us - groupW0[gi];
-                    const double gp = psiSlope(a, predicted);
-                    const double B = 0.25 * gp * gp;
-                    const double d = 1.0 / (1.0 + gammaS * B);
-                    gq[t] = gp;
-                    alphaQ[t] = (gp * psiQ[t] + B * (predicted - a)) * d;
-                    betaQ[t] = groupCc[gi] * hs * B * d;
-                    uFree[t] = us;
-                }
+            const double us = u[pointWireNode[(size_t) t]], a = xiPrev[(size_t) t];
+            const double predicted = us - pointW0[(size_t) t];
+            const double gp = psiSlope(a, predicted);
+            const double B = 0.25 * gp * gp;
+            const double d = 1.0 / (1.0 + gammaS * B);
+            gq[(size_t) t] = gp;
+            alphaQ[(size_t) t] = (gp * psiQ[(size_t) t] + B * (predicted - a)) * d;
+            betaQ[(size_t) t] = pointCc[(size_t) t] * hs * B * d;
+            uFree[(size_t) t] = us;
         }
 
     // Per group: S = sum alpha / (1 + sum beta) and W; then the node and the ends (eq. 32a).
@@ -329,14 +333,10 @@ SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wire
             u[endWireNode[(size_t) groupEnds[(size_t) e]]] = groupW[(size_t) g];
 
     // Per point: the force, the wire, the gap and psi at n+1/2.
-    for (const SizeClass& c : classes)
-        for (int j = 0; j < c.size; ++j)
-        {
-            const int t0 = c.pointBegin + j * c.groupCount, g0 = c.groupBegin;
-            finishPoints(c.groupCount, alphaQ.data() + t0, betaQ.data() + t0, gq.data() + t0, groupS.data() + g0,
-                         groupW.data() + g0, gammaS, xiPrev.data() + t0, xiNow.data() + t0, uFree.data() + t0,
-                         xiNext.data() + t0, psiQ.data() + t0, dropped.data() + t0);
-        }
+    expandToPoints(groupS.data(), pointS.data());
+    expandToPoints(groupW.data(), pointW.data());
+    finishPoints(n, alphaQ.data(), betaQ.data(), gq.data(), pointS.data(), pointW.data(), gammaS, xiPrev.data(), xiNow.data(),
+                 uFree.data(), xiNext.data(), psiQ.data(), dropped.data());
     scatterPoints(n, pointWireNode.data(), uFree.data(), u);
 
     SnareSolveResult result;

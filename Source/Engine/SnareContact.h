@@ -13,8 +13,9 @@
 // Layout: the node groups are sorted into classes of equal size; a class of G groups of K
 // points stores its points member-major (member j of group i at j G + i), so that every
 // per-point and per-group loop of the quadratised solve runs over contiguous arrays and
-// vectorises (member j's points beside the groups' own arrays), with one gather (the wire
-// node) per point.
+// vectorises: the per-group sums member by member over the class, the per-point loops once over
+// all points with their groups' values copied beside them (a block copy per member), with one
+// gather (the wire node) per point.
 //
 // Two schemes for the collision term (SnareSpec::scheme):
 // - newton: the paper's eq. (30), f = (Phi(xi^{n+1}) - Phi(xi^{n-1})) / (xi^{n+1} - xi^{n-1}),
@@ -160,6 +161,8 @@ private:
     // energy psi's reset removed
     std::vector<double> groupW0, groupCc, groupS, groupW;
     std::vector<double> gq, alphaQ, betaQ, uFree, dropped;
+    std::vector<double> pointW0, pointCc, pointS, pointW; // each point's group's W0, c', S, W
+    void expandToPoints(const double* perGroup, double* perPoint) const;
 
     SnareWires& snares;
     Membrane& head; // the carry head
