@@ -390,14 +390,20 @@ std::array<double, 2> Membrane::tiltNext() const
     return { h * h * sx, h * h * sy };
 }
 
-void Membrane::blockVolumesNext(int side, double* out) const
+void Membrane::blockSumsNext(int side, double* out) const
 {
     const int n = g.width();
-    const int blocks = (n + side - 1) / side;
     if (single)
         blockSums(fNext.data(), n, side, dRowScratch.data(), out);
     else
         blockSums(wNext.data(), n, side, dRowScratch.data(), out);
+}
+
+void Membrane::blockVolumesNext(int side, double* out) const
+{
+    const int n = g.width();
+    const int blocks = (n + side - 1) / side;
+    blockSumsNext(side, out);
     for (int b = 0; b < blocks * blocks; ++b)
         out[b] *= h * h;
 }

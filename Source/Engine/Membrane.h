@@ -48,6 +48,8 @@ public:
     // with ix / side == bx, iy / side == by) into out[by * blocks + bx], blocks = ceil(N / side);
     // A pass over the grid: the pressure microphones' cells.
     void blockVolumesNext(int side, double* out) const;
+    // The same sums without the h^2 (the microphones fold it into their own factor).
+    void blockSumsNext(int side, double* out) const;
     // h^2 sum(w^{n+1} - 2 w^n + w^{n-1}) over the blocks of side x side nodes of the rectangle
     // of columns x rows nodes from node (ix0, iy0) (inside the grid), into out row by row.
     void blockAccelerationsIn(int side, int ix0, int iy0, int columns, int rows, double* out) const;

@@ -84,17 +84,18 @@ SNARESIM_WIDE_VECTOR_CLONES void sumTapRuns(int delays, const int* __restrict ru
     }
 }
 
-// The cells' A^n = sign (V^{n+1} - 2 V^n + V^{n-1}) / k^2 from their blocks' volumes at n+1,
-// the volumes moved on a step; returns the whole head's A^n.
-SNARESIM_WIDE_VECTOR_CLONES double cellAccelerations(int cells, const int* __restrict block, const double* __restrict blockVolume,
-                                                     double sign, double inverseKk, double* __restrict vNow,
+// The cells' A^n = (V^{n+1} - 2 V^n + V^{n-1}) / k^2 from their blocks' sums at n+1 (V = scale
+// times the sum: h^2 and the outward sign), the volumes moved on a step; returns the whole
+// head's A^n.
+SNARESIM_WIDE_VECTOR_CLONES double cellAccelerations(int cells, const int* __restrict block, const double* __restrict blockSum,
+                                                     double scale, double inverseKk, double* __restrict vNow,
                                                      double* __restrict vPrev, double* __restrict accel)
 {
     double whole = 0.0;
 #pragma omp simd reduction(+ : whole)
     for (int j = 0; j < cells; ++j)
     {
-        const double v = sign * blockVolume[block[j]];
+        const double v = scale * blockSum[block[j]];
         const double a = (v - 2.0 * vNow[j] + vPrev[j]) * inverseKk; // A^n
         vPrev[j] = vNow[j];
         vNow[j] = v;
@@ -125,7 +126,7 @@ PressureMicrophones::PressureMicrophones(const DrumConfig& cfg, const Membrane& 
         h.side = std::max(1, (int) std::lround(cfg.mics.cellSize_m / g.spacing()));
         const int blocks = (n + h.side - 1) / h.side;
         h.width_m = h.side * g.spacing();
-        h.blockVolume.assign((size_t) (blocks * blocks), 0.0);
+        h.blockSum.assign((size_t) (blocks * blocks), 0.0);
         for (int by = 0; by < blocks; ++by)
             for (int bx = 0; bx < blocks; ++bx)
             {
@@ -315,9 +316,10 @@ void PressureMicrophones::listen(const Membrane& batter, const Membrane& carry) 
     for (int hi = 0; hi < 2; ++hi)
     {
         Head& h = heads[(size_t) hi];
-        membranes[hi]->blockVolumesNext(h.side, h.blockVolume.data());
-        h.accel[(size_t) h.cells] = cellAccelerations(h.cells, h.block.data(), h.blockVolume.data(), h.sign, inverseKk, h.vNow.data(),
-                                                      h.vPrev.data(), h.accel.data());
+        membranes[hi]->blockSumsNext(h.side, h.blockSum.data()); // volumes / h^2
+        const double hh = membranes[hi]->grid().spacing() * membranes[hi]->grid().spacing();
+        h.accel[(size_t) h.cells] = cellAccelerations(h.cells, h.block.data(), h.blockSum.data(), h.sign * hh, inverseKk,
+                                                      h.vNow.data(), h.vPrev.data(), h.accel.data());
     }
     const size_t mask = (size_t) rows - 1;
     for (int m = 0; m < numMics; ++m)

@@ -21,7 +21,7 @@
 // <.> the mean over the facing rim's points, d from a rim point to the microphone, H the shell's
 // depth, A_f, A_o the heads' whole outward volume accelerations (the batter's outward normal up,
 // the carry head's down). The air box checks it (Tests/Engine/PressureMicrophoneTests.cpp).
-// Cost per step: a pass over each head (Membrane::blockVolumesNext), two multiply-adds per cell
+// Cost per step: a pass over each head (Membrane::blockSumsNext), two multiply-adds per cell
 // per microphone. Real-time safe after construction: setPositions and listen allocate nothing.
 
 #include "CircularGrid.h"
@@ -74,7 +74,7 @@ private:
         const CircularGrid* grid = nullptr;
         int blocks = 0;                  // blocks per row of the grid
         int fine = 1;                    // side of the cells near a microphone, in grid nodes
-        std::vector<double> blockVolume;
+        std::vector<double> blockSum;    // the blocks' sums of w^{n+1} (Membrane::blockSumsNext)
         std::vector<double> vNow, vPrev; // cell volumes at n, n-1 (m^3)
         std::vector<double> accel;       // the cells' A^n, the whole head's last
     };
