@@ -399,14 +399,6 @@ void Membrane::blockSumsNext(int side, double* out) const
         blockSums(wNext.data(), n, side, dRowScratch.data(), out);
 }
 
-void Membrane::blockVolumesNext(int side, double* out) const
-{
-    const int n = g.width();
-    const int blocks = (n + side - 1) / side;
-    blockSumsNext(side, out);
-    for (int b = 0; b < blocks * blocks; ++b)
-        out[b] *= h * h;
-}
 
 void Membrane::blockAccelerationsIn(int side, int ix0, int iy0, int columns, int rows, double* out) const
 {

@@ -44,11 +44,10 @@ public:
     void computeFree(double p0_Pa, double px_Pa_per_m, double py_Pa_per_m);
     // h^2 sum(x w), h^2 sum(y w) at n+1: the head's first moments (m^4), a pass over the grid.
     std::array<double, 2> tiltNext() const;
-    // h^2 sum(w^{n+1}) over square blocks of side x side nodes (block (bx, by) holds the nodes
-    // with ix / side == bx, iy / side == by) into out[by * blocks + bx], blocks = ceil(N / side);
-    // A pass over the grid: the pressure microphones' cells.
-    void blockVolumesNext(int side, double* out) const;
-    // The same sums without the h^2 (the microphones fold it into their own factor).
+    // sum(w^{n+1}) over square blocks of side x side nodes (block (bx, by) holds the nodes with
+    // ix / side == bx, iy / side == by) into out[by * blocks + bx], blocks = ceil(N / side), in
+    // double: h^2 times it is a block's volume. A pass over the grid: the pressure microphones'
+    // cells.
     void blockSumsNext(int side, double* out) const;
     // h^2 sum(w^{n+1} - 2 w^n + w^{n-1}) over the blocks of side x side nodes of the rectangle
     // of columns x rows nodes from node (ix0, iy0) (inside the grid), into out row by row.
@@ -154,7 +153,7 @@ private:
     std::vector<float> fMask;               // single precision: the grid's mask
     std::vector<float> fX, fY;              // single precision: x and y times the mask
     std::vector<double> dX, dY;             // double precision: the same
-    mutable std::vector<double> dRowScratch; // a band of rows summed, for blockVolumesNext
+    mutable std::vector<double> dRowScratch; // a band of rows summed, for blockSumsNext
     mutable std::vector<double> accScratch;  // a row, for blockAccelerationsIn
 };
 

@@ -150,7 +150,7 @@ TEST_CASE("the product's grids keep the low batter modes at the Bessel frequenci
     }
 }
 
-TEST_CASE("the heads' block volumes equal the plain sums over their blocks, any side, either precision", "[membrane][mics]")
+TEST_CASE("the heads' block sums equal the plain sums over their blocks, any side, either precision", "[membrane][mics]")
 {
     for (const HeadPrecision precision : { HeadPrecision::double_precision, HeadPrecision::single_precision })
     {
@@ -172,12 +172,12 @@ TEST_CASE("the heads' block volumes equal the plain sums over their blocks, any 
             INFO("side " << side << (precision == HeadPrecision::single_precision ? ", single" : ", double"));
             const int blocks = (n + side - 1) / side;
             std::vector<double> got((size_t) (blocks * blocks)), expected((size_t) (blocks * blocks), 0.0);
-            head.blockVolumesNext(side, got.data());
+            head.blockSumsNext(side, got.data());
             for (int iy = 0; iy < n; ++iy)
                 for (int ix = 0; ix < n; ++ix)
-                    expected[(size_t) ((iy / side) * blocks + ix / side)] += head.nextAt(g.index(ix, iy)) * g.spacing() * g.spacing();
+                    expected[(size_t) ((iy / side) * blocks + ix / side)] += head.nextAt(g.index(ix, iy));
             for (size_t b = 0; b < got.size(); ++b)
-                CHECK(got[b] == Approx(expected[b]).margin(1e-18));
+                CHECK(got[b] == Approx(expected[b]).margin(1e-13));
         }
     }
 }
