@@ -227,7 +227,8 @@ SNARESIM_WIDE_VECTOR_CLONES void sumBlocks(const Real* __restrict w, int n, doub
         }
     }
 }
-// The same for any side (fine grids: 96 kHz), the band's rows added one after another.
+// The same for any side (fine grids: 96 kHz), the band's rows added one after another: the
+// general form of sumBlocks, whose constant Side keeps a column's sum in a register.
 template <class Real>
 SNARESIM_WIDE_VECTOR_CLONES void sumBlocksOfSide(const Real* __restrict w, int n, int side, double* __restrict acc, double* __restrict out)
 {
@@ -398,7 +399,6 @@ void Membrane::blockSumsNext(int side, double* out) const
     else
         blockSums(wNext.data(), n, side, dRowScratch.data(), out);
 }
-
 
 void Membrane::blockAccelerationsIn(int side, int ix0, int iy0, int columns, int rows, double* out) const
 {
