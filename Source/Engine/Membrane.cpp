@@ -160,32 +160,21 @@ SNARESIM_WIDE_VECTOR_CLONES double updateGridFloat(float* __restrict out, const 
     }
     return sum;
 }
-// sum(xs w), sum(ys w) over count nodes, in double, in sixteen running sums each (the adds'
-// latency would bind a single sum).
+// sum(xs w), sum(ys w) over count nodes, in double (vector lanes).
 template <class Real>
 SNARESIM_WIDE_VECTOR_CLONES void firstMoments(const Real* __restrict w, const Real* __restrict xs, const Real* __restrict ys, int count,
                                               double& sx, double& sy)
 {
-    double ax[16] = {}, ay[16] = {};
-    int m = 0;
-    for (; m + 16 <= count; m += 16)
-        for (int j = 0; j < 16; ++j)
-        {
-            ax[j] += (double) xs[m + j] * (double) w[m + j];
-            ay[j] += (double) ys[m + j] * (double) w[m + j];
-        }
-    for (; m < count; ++m)
+    double ax = 0.0, ay = 0.0;
+#pragma omp simd reduction(+ : ax, ay)
+    for (int m = 0; m < count; ++m)
     {
-        ax[0] += (double) xs[m] * (double) w[m];
-        ay[0] += (double) ys[m] * (double) w[m];
+        const double wm = (double) w[m];
+        ax += (double) xs[m] * wm;
+        ay += (double) ys[m] * wm;
     }
-    for (int j = 1; j < 16; ++j)
-    {
-        ax[0] += ax[j];
-        ay[0] += ay[j];
-    }
-    sx = ax[0];
-    sy = ay[0];
+    sx = ax;
+    sy = ay;
 }
 // Block sums of an n x n grid, band by band: a band's Side rows summed node by node into one
 // row (the Side values held in registers, vectorised along the row; zero beyond n), then its
