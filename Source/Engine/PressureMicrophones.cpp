@@ -126,6 +126,7 @@ PressureMicrophones::PressureMicrophones(const DrumConfig& cfg, const Membrane& 
         h.side = std::max(1, (int) std::lround(cfg.mics.cellSize_m / g.spacing()));
         const int blocks = (n + h.side - 1) / h.side;
         h.width_m = h.side * g.spacing();
+        h.nodeArea = g.spacing() * g.spacing();
         h.blockSum.assign((size_t) (blocks * blocks), 0.0);
         for (int by = 0; by < blocks; ++by)
             for (int bx = 0; bx < blocks; ++bx)
@@ -317,8 +318,7 @@ void PressureMicrophones::listen(const Membrane& batter, const Membrane& carry) 
     {
         Head& h = heads[(size_t) hi];
         membranes[hi]->blockSumsNext(h.side, h.blockSum.data()); // volumes / h^2
-        const double hh = membranes[hi]->grid().spacing() * membranes[hi]->grid().spacing();
-        h.accel[(size_t) h.cells] = cellAccelerations(h.cells, h.block.data(), h.blockSum.data(), h.sign * hh, inverseKk,
+        h.accel[(size_t) h.cells] = cellAccelerations(h.cells, h.block.data(), h.blockSum.data(), h.sign * h.nodeArea, inverseKk,
                                                       h.vNow.data(), h.vPrev.data(), h.accel.data());
     }
     const size_t mask = (size_t) rows - 1;

@@ -68,6 +68,7 @@ private:
         double sign = 1.0;       // outward normal: +1 batter (up), -1 carry (down)
         int side = 1;            // cell side in grid nodes
         double width_m = 0.0;    // and in metres
+        double nodeArea = 0.0;   // h^2 of the head's grid (a block sum times it is a volume)
         int cells = 0;           // blocks holding interior nodes
         std::vector<int> block;  // cell -> block
         std::vector<double> cx, cy; // cell centres (m)
