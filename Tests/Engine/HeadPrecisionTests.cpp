@@ -123,14 +123,13 @@ Features features(const std::vector<double>& x, double fs)
     return f;
 }
 
-// The mean features of six strikes whose speeds differ by 0.1 % steps: the snares make the
+// The mean features of `draws` strikes whose speeds differ by 0.1 % steps: the snares make the
 // drum chaotic, so one render is one draw from a spread (the double drum's tail centroid moves
 // by 6 % at Quality 2 when the speed moves in its 13th digit); the mean of draws that part from
 // the first contact is what two drums can be compared by.
-Features meanFeatures(double quality, HeadPrecision precision, double seconds, double fs)
+Features meanFeatures(double quality, HeadPrecision precision, double seconds, double fs, int draws)
 {
     Features mean;
-    const int draws = 6;
     for (int i = 0; i < draws; ++i)
     {
         const Features f = features(strike(productDrum(quality, true, precision), seconds, 1.0 + 1e-3 * i), fs);
@@ -144,13 +143,14 @@ Features meanFeatures(double quality, HeadPrecision precision, double seconds, d
 }
 
 // Features a listener, or the comparison with recorded drums (docs/MODEL.md), would not tell
-// apart: tail centroid within 5 %, band shares within one point, the falls within 3 %.
+// apart: tail centroid within 5 %, band shares within one point, the falls within 5 % (the
+// just-noticeable difference of a decay time, ISO 3382-1 Annex A).
 bool close(const Features& a, const Features& b)
 {
     bool ok = std::abs(a.centroid_Hz / b.centroid_Hz - 1.0) < 0.05;
     for (int j = 0; j < 4; ++j)
         ok = ok && std::abs(a.bands[j] - b.bands[j]) < 0.01;
-    return ok && std::abs(a.fall20_ms / b.fall20_ms - 1.0) < 0.03 && std::abs(a.fall40_ms / b.fall40_ms - 1.0) < 0.03;
+    return ok && std::abs(a.fall20_ms / b.fall20_ms - 1.0) < 0.05 && std::abs(a.fall40_ms / b.fall40_ms - 1.0) < 0.05;
 }
 
 std::string describe(const Features& f)
@@ -179,20 +179,24 @@ TEST_CASE("single-precision heads play the double-precision drum to within 80 dB
 
 TEST_CASE("single-precision heads keep the snare drum's sound: centroid, band shares and decay", "[precision]")
 {
-    // The mean features of six strikes (meanFeatures) with single-precision heads against the
+    // The mean features of 18 strikes (meanFeatures) with single-precision heads against the
     // same with double ones; Quality 1 against Quality 2 must differ, or the test would not tell.
-    // Measured (8 draws each, release build): at Quality 2 single precision holds 0.45 points
-    // less of the first 300 ms in 1-2 kHz (3.6 % against 4.05 %, about 4 standard errors) and
-    // 0.4 more below 1 kHz; at Quality 1 the shares agree within a standard error.
-    const double fs = 48000.0, seconds = 1.0;
+    // Measured at the default drum, 30 draws each (release and the clang sanitizer build): the
+    // two precisions agree within a standard error in every feature at both qualities; one
+    // draw spreads by 5 % in the centroid, 4.5 % in the 20 dB fall and 3 % in the 40 dB fall
+    // (Quality 2), so 18 draws put each tolerance at 3 or more standard errors of the difference
+    // (six draws put the falls' former 3 % at 1.2-1.7 and failed by chance). The features need
+    // only 0.5 s: the 40 dB fall is about 0.2 s.
+    const double fs = 48000.0, seconds = 0.5;
+    const int draws = 18;
     const double quality = GENERATE(1.0, 2.0);
-    const auto reference = meanFeatures(quality, HeadPrecision::double_precision, seconds, fs);
-    const auto single = meanFeatures(quality, HeadPrecision::single_precision, seconds, fs);
+    const auto reference = meanFeatures(quality, HeadPrecision::double_precision, seconds, fs, draws);
+    const auto single = meanFeatures(quality, HeadPrecision::single_precision, seconds, fs, draws);
     INFO("Quality " << quality << ": double " << describe(reference) << "; single " << describe(single));
     CHECK(close(single, reference));
     if (quality == 2.0)
     {
-        const auto finer = meanFeatures(1.0, HeadPrecision::double_precision, seconds, fs);
+        const auto finer = meanFeatures(1.0, HeadPrecision::double_precision, seconds, fs, 6); // 900 against 1600 Hz
         INFO("Quality 1, double: " << describe(finer));
         CHECK_FALSE(close(finer, reference));
     }
