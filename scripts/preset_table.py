@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Every factory preset's strike beside the recorded snare drums: a Markdown table (numpy, scipy).
 
-    python3 scripts/preset_table.py [--build build] [--work DIR] [--seconds 1.5] [--json] [--presets P,P,...] [--check]
+    python3 scripts/preset_table.py [--build build] [--work DIR] [--seconds 1.5] [--json] [--presets P,P,...]
+                                    [--set KEY=VALUE ...] [--check]
 
 Each factory preset (the renderer's --help lists them) is struck once at velocities 60, 100 and
 127 as the plug-in plays it: snaresim-render --preset NAME --hit 0:VELOCITY, the default model
@@ -24,6 +25,8 @@ A preset plays with its snares off when its render equals the one with snares_en
 table is printed either way), and 77 (the test suite's "skipped") when the recordings are missing.
 --presets chooses the presets: names or preset files (a file's rows are named after it), for
 trying a preset before it becomes a factory one.
+--set KEY=VALUE (repeatable) is passed to every render after the preset: the presets with the
+outside air on (--set outside_air=on) or at another quality (--set grid_coarseness=1).
 --work DIR keeps the renders there and uses those it finds (delete them after a change of the
 model or of --seconds). --json prints every feature (the shares in %), range and check as one
 JSON object instead.
@@ -80,12 +83,14 @@ def presets(render):
     return re.findall(r'"([^"]+)"', line)
 
 
-def render_strike(render, wav, preset, velocity, seconds, snares_off):
+def render_strike(render, wav, preset, velocity, seconds, snares_off, settings=()):
     """Render one strike to wav unless it is there already."""
     if os.path.exists(wav):
         return
     args = [render, '-o', wav, '--preset', preset, '--hit', '0:%d' % velocity,
             '--seconds', '%g' % seconds, '--sample-rate', str(RATE)]
+    for setting in settings:
+        args += ['--set', setting]
     if snares_off:
         args += ['--set', 'snares_engaged=off']
     done = subprocess.run(args, capture_output=True, text=True)
@@ -121,16 +126,17 @@ def check(value, bounds):
     return 'low' if value < bounds[0] else 'high' if value > bounds[1] else 'in'
 
 
-def measure(render, work, seconds, keep, chosen=None):
+def measure(render, work, seconds, keep, chosen=None, settings=()):
     rows = []
     for preset in chosen or presets(render):
         name = os.path.splitext(os.path.basename(preset))[0] if os.path.isfile(preset) else preset
-        slug = re.sub(r'[^a-z0-9]+', '-', name.lower()).strip('-')
+        # the settings in the file names, so that a --work folder keeps each set apart
+        slug = re.sub(r'[^a-z0-9]+', '-', ' '.join([name] + list(settings)).lower()).strip('-')
         for velocity in VELOCITIES:
             on = os.path.join(work, 'preset-%s-v%d.wav' % (slug, velocity))
             off = os.path.join(work, 'preset-%s-v%d-snares-off.wav' % (slug, velocity))
-            render_strike(render, on, preset, velocity, seconds, False)
-            render_strike(render, off, preset, velocity, seconds, True)
+            render_strike(render, on, preset, velocity, seconds, False, settings)
+            render_strike(render, off, preset, velocity, seconds, True, settings)
             with open(on, 'rb') as a, open(off, 'rb') as b:
                 snares = 'off' if a.read() == b.read() else 'on'
             mine, theirs = values(snare_features.features(on)), values(snare_features.features(off))
@@ -151,7 +157,13 @@ def main():
                         help='exit 1 if a preset fails a check, 77 if the recordings are missing')
     parser.add_argument('--presets', default=None,
                         help='comma-separated preset names or preset files (default: every factory preset)')
+    parser.add_argument('--set', action='append', default=[], metavar='KEY=VALUE', dest='settings',
+                        help='passed to every render after the preset (repeatable)')
     args = parser.parse_args()
+    bad = [v for v in args.settings if not re.fullmatch(r'[a-z0-9_]+=[^\s=]+', v)]
+    if bad:
+        print('preset_table.py: --set wants KEY=VALUE, got %r' % bad[0], file=sys.stderr)
+        return 2
     chosen = [p for p in args.presets.split(',') if p] if args.presets else None
     render = os.path.join(args.build, 'Source/Renderer/snaresim-render')
     if not (os.path.isfile(render) and os.access(render, os.X_OK)):
@@ -169,10 +181,10 @@ def main():
             return 77 if args.check else 2
         if args.work:
             os.makedirs(args.work, exist_ok=True)
-            rows = measure(render, args.work, args.seconds, True, chosen)
+            rows = measure(render, args.work, args.seconds, True, chosen, args.settings)
         else:
             with tempfile.TemporaryDirectory() as tmp:
-                rows = measure(render, tmp, args.seconds, False, chosen)
+                rows = measure(render, tmp, args.seconds, False, chosen, args.settings)
     except snare_features.BadInput as e:
         print('preset_table.py: %s' % e, file=sys.stderr)
         return 2
@@ -194,7 +206,7 @@ def main():
                if any(r['checks'][k] in ('low', 'high') for k in TARGETS) or r['centroid_over_snares_off_ok'] is False]
     status = 1 if args.check and failing else 0
     if args.json:
-        print(json.dumps({'seconds': args.seconds, 'sample_rate_hz': RATE, 'velocities': VELOCITIES,
+        print(json.dumps({'seconds': args.seconds, 'settings': args.settings, 'sample_rate_hz': RATE, 'velocities': VELOCITIES,
                           'margin': MARGIN, 'ratio': RATIO, 'rows': rows, 'recordings': sets,
                           'windows': windows}, indent=1))
         return status
@@ -238,8 +250,9 @@ def main():
     total = sum(1 for r in rows if r['snares'] == 'on')
     print('Tail centroid at least %g times the same preset\'s with snares_engaged=off: %d of %d snares-on rows.'
           % (RATIO, ok, total))
-    print('Rendered %s s at %d Hz, --mic mix, the default model; %s.'
-          % ('%g' % args.seconds, RATE, datetime.date.today().isoformat()))
+    print('Rendered %s s at %d Hz, --mic mix, the default model%s; %s.'
+          % ('%g' % args.seconds, RATE, ''.join(', --set ' + v for v in args.settings),
+             datetime.date.today().isoformat()))
     if args.check:
         print('Check: %s' % ('every row passes' if not failing else '%d rows fail: %s' % (
             len(failing), ', '.join('%s at %d' % (r['preset'], r['velocity']) for r in failing))))

@@ -1,0 +1,51 @@
+#!/usr/bin/env python3
+"""scripts/preset_table.py's --set: passed to every render after the preset, a malformed one refused.
+
+    python3 Tests/Scripts/test_preset_table.py PATH/TO/preset_table.py BUILD_DIR
+
+"Snares Off" with --set snares_engaged=on must render with its snares on (its rows say "on",
+with a snares-off ratio), and without the --set with them off; the settings are named in the
+JSON. A --set without KEY=VALUE: one line on stderr, exit status 2. Exit status 77 (skipped)
+when the recordings are missing, as preset_table.py --check.
+"""
+
+import json
+import subprocess
+import sys
+
+failures = []
+
+
+def check(condition, what):
+    print(('ok   ' if condition else 'FAIL ') + what)
+    if not condition:
+        failures.append(what)
+
+
+def run(*extra):
+    return subprocess.run([sys.executable, script, '--build', build, '--seconds', '0.5', '--json',
+                           '--presets', 'Snares Off'] + list(extra), capture_output=True, text=True)
+
+
+script, build = sys.argv[1], sys.argv[2]
+
+bad = run('--set', 'snares_engaged')
+check(bad.returncode == 2, 'a --set without a value exits 2 (got %d)' % bad.returncode)
+check(len(bad.stderr.strip().splitlines()) == 1 and 'KEY=VALUE' in bad.stderr, 'and says so in one line: %r' % bad.stderr)
+check(bad.stdout == '', 'and prints no table')
+
+plain = run()
+if plain.returncode == 2 and 'hydrogen-drumkits' in plain.stderr:
+    print('no recordings (apt-get install hydrogen-drumkits): skipped')
+    sys.exit(77)
+check(plain.returncode == 0, 'Snares Off renders (exit %d: %s)' % (plain.returncode, plain.stderr.strip()))
+engaged = run('--set', 'snares_engaged=on')
+check(engaged.returncode == 0, 'with --set snares_engaged=on too (exit %d: %s)' % (engaged.returncode, engaged.stderr.strip()))
+if plain.returncode == 0 and engaged.returncode == 0:
+    a, b = json.loads(plain.stdout), json.loads(engaged.stdout)
+    check([r['snares'] for r in a['rows']] == ['off'] * 3, 'Snares Off plays with its snares off')
+    check([r['snares'] for r in b['rows']] == ['on'] * 3, 'the --set reaches every render: its snares are on')
+    check(all((r['centroid_over_snares_off'] or 0.0) > 1.0 for r in b['rows']), 'and brighten its tail')
+    check(a['settings'] == [] and b['settings'] == ['snares_engaged=on'], 'the JSON names the settings')
+
+sys.exit(1 if failures else 0)
