@@ -122,9 +122,9 @@ TEST_CASE("preset files: written and read back, every value is exact", "[presets
 TEST_CASE("factory presets: read from their files, in program order, each different", "[presets]")
 {
     const auto presets = factoryPresets();
-    REQUIRE(presets.size() == 9);
+    REQUIRE(presets.size() == 10);
     const char* names[] = { "Studio Default", "Tight Funk", "Fat Rock", "Piccolo", "Snares Off",
-                            "Loose Vintage", "Muffled Dry", "Marching", "Soft Mallet" };
+                            "Loose Vintage", "Muffled Dry", "Marching", "Soft Mallet", "Open Air" };
     std::set<std::string> texts;
     for (size_t i = 0; i < presets.size(); ++i)
     {

@@ -277,10 +277,10 @@ TEST_CASE ("the factory presets are the programs", "[processor][programs]")
 {
     SnareSimAudioProcessor proc;
     const auto presets = snaresim::factoryPresets();
-    REQUIRE (proc.getNumPrograms() == 9);
-    REQUIRE (presets.size() == 9);
+    REQUIRE (proc.getNumPrograms() == 10);
+    REQUIRE (presets.size() == 10);
     CHECK (proc.getProgramName (-1).isEmpty());
-    CHECK (proc.getProgramName (9).isEmpty());
+    CHECK (proc.getProgramName (10).isEmpty());
 
     for (int i = 0; i < proc.getNumPrograms(); ++i)
     {
@@ -306,7 +306,7 @@ TEST_CASE ("the factory presets are the programs", "[processor][programs]")
     }
 
     proc.setCurrentProgram (42);    // ignored
-    CHECK (proc.getCurrentProgram() == 8);
+    CHECK (proc.getCurrentProgram() == proc.getNumPrograms() - 1); // the last one set
 }
 
 TEST_CASE ("preset files load into every parameter, save what the host holds, and bad files change nothing", "[processor][programs]")
