@@ -1,5 +1,7 @@
 #include "OutsideAir.h"
 
+#include "AirPort.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -69,16 +71,13 @@ OutsideAir::OutsideAir(const OutsideAirSpec& s, const MembraneSpec& batter, cons
 
 void OutsideAir::computeFree()
 {
-    // With beta = k^2 / M + 2 k / R, the port's two equations give
-    // z^{n+1} (1 + beta K / 2) = z^{n-1} (1 - beta K / 2) + 2 k v^{n-1/2} + beta K q^n.
     for (size_t c = 0; c < numChannels; ++c)
     {
-        const double beta = k * k / M[c] + 2.0 * k * Y[c];
-        const double bk = 0.5 * beta * K[c];
-        zNext[c] = (zPrev[c] * (1.0 - bk) + 2.0 * k * vPrev[c] + 2.0 * bk * qNow[c]) / (1.0 + bk);
-        p[c] = K[c] * (qNow[c] - 0.5 * (zNext[c] + zPrev[c]));
-        vNext[c] = vPrev[c] + k / M[c] * p[c];
-        P[c] = -K[c] * (qNow[c] - zNow[c]);
+        const airport::Step s = airport::step(k, K[c], M[c], Y[c], qNow[c], zPrev[c], zNow[c], vPrev[c]);
+        zNext[c] = s.zNext;
+        vNext[c] = s.vNext;
+        p[c] = s.port;
+        P[c] = s.onHeads;
     }
 }
 
@@ -86,14 +85,7 @@ double OutsideAir::energy() const
 {
     double e = 0.0;
     for (size_t c = 0; c < numChannels; ++c)
-    {
-        // (K/2) [(mu q - mu z)^2 + ((dz + dq)^2 - 2 dq^2) / 4], the form of OutsideAir.h's E_c
-        // with its differences taken first
-        const double mq = 0.5 * (qNext[c] + qNow[c]), mz = 0.5 * (zNext[c] + zNow[c]);
-        const double dq = qNext[c] - qNow[c], dz = zNext[c] - zNow[c];
-        const double s = mq - mz;
-        e += 0.5 * K[c] * (s * s + 0.25 * ((dz + dq) * (dz + dq) - 2.0 * dq * dq)) + 0.5 * M[c] * vNext[c] * vNext[c];
-    }
+        e += airport::energy(K[c], M[c], qNext[c], qNow[c], zNext[c], zNow[c], vNext[c]);
     return e;
 }
 
@@ -101,7 +93,7 @@ double OutsideAir::stepLoss() const
 {
     double q = 0.0;
     for (size_t c = 0; c < numChannels; ++c)
-        q += k * Y[c] * p[c] * p[c];
+        q += airport::loss(k, Y[c], p[c]);
     return q;
 }
 
