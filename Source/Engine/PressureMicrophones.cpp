@@ -1,5 +1,6 @@
 #include "PressureMicrophones.h"
 
+#include "HeadCells.h"
 #include "Membrane.h"
 #include "VectorClones.h"
 
@@ -28,26 +29,6 @@ double meanInverseOver(double x, double y, double z, double w, double r, const A
         for (int b = 0; b < 6; ++b)
             sum += 1.0 / std::max(1e-4, distance(x + w * ((a + 0.5) / 6.0 - 0.5), y + w * ((b + 0.5) / 6.0 - 0.5), z, p));
     return sum / 36.0;
-}
-
-// The centre of the interior nodes of columns [ix0, ix1) and rows [iy0, iy1); false if none.
-bool interiorCentre(const CircularGrid& g, int ix0, int ix1, int iy0, int iy1, double& x, double& y)
-{
-    double sx = 0.0, sy = 0.0;
-    int count = 0;
-    for (int iy = iy0; iy < iy1; ++iy)
-        for (int ix = ix0; ix < ix1; ++ix)
-            if (g.mask()[(size_t) g.index(ix, iy)] > 0.5)
-            {
-                sx += g.x(ix);
-                sy += g.x(iy);
-                ++count;
-            }
-    if (count == 0)
-        return false;
-    x = sx / count;
-    y = sy / count;
-    return true;
 }
 
 // A microphone's runs of taps, a run per whole delay d from `slot`: now * A[cell] summed into
@@ -119,25 +100,18 @@ PressureMicrophones::PressureMicrophones(const DrumConfig& cfg, const Membrane& 
     {
         Head& h = heads[(size_t) hi];
         const CircularGrid& g = membranes[hi]->grid();
-        const int n = g.width();
         h.z = hi == 0 ? 0.5 * H : -0.5 * H;
         h.grid = &g;
         h.sign = hi == 0 ? 1.0 : -1.0;
-        h.side = std::max(1, (int) std::lround(cfg.mics.cellSize_m / g.spacing()));
-        const int blocks = (n + h.side - 1) / h.side;
+        const HeadCells cells(g, cfg.mics.cellSize_m);
+        h.side = cells.side;
+        const int blocks = cells.blocks;
         h.width_m = h.side * g.spacing();
         h.nodeArea = g.spacing() * g.spacing();
         h.blockSum.assign((size_t) (blocks * blocks), 0.0);
-        for (int by = 0; by < blocks; ++by)
-            for (int bx = 0; bx < blocks; ++bx)
-            {
-                double x = 0.0, y = 0.0;
-                if (! interiorCentre(g, bx * h.side, std::min(n, (bx + 1) * h.side), by * h.side, std::min(n, (by + 1) * h.side), x, y))
-                    continue;
-                h.block.push_back(by * blocks + bx);
-                h.cx.push_back(x);
-                h.cy.push_back(y);
-            }
+        h.block = cells.block;
+        h.cx = cells.cx;
+        h.cy = cells.cy;
         h.cells = (int) h.block.size();
         h.blocks = blocks;
         h.fine = std::clamp((int) std::lround(cfg.mics.fineCellSize_m / g.spacing()), 1, h.side);
