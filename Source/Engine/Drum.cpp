@@ -67,6 +67,7 @@ auto Drum::energyTerms() const
                         EnergyTerm("mallets", mallets, malletCoupling),            // eq. (37)
                         EnergyTerm("snares", wires, snareCoupling).when(engaged),  // eq. (38)
                         EnergyTerm("cavity", air),                                 // (K/2) dV^{n+1} dV^n
+                        EnergyTerm("cavity modes", modes).listedIf(modes.active()), // CavityModes.h
                         EnergyTerm("outside", outside).listedIf(outside.active()), // OutsideAir.h
                         EnergyTerm("airbox", box).listedIf(box.active()) };        // eq. (36)
 }
@@ -77,7 +78,8 @@ Drum::Drum(const DrumConfig& config)
       wires(cfg.fittedSnares(), cfg.carry.radius_m, k), snareCoupling(cfg.snares, wires, carryHead),
       mallets(makeMallets(cfg, batterHead, k)), malletCoupling(batterHead, mallets), airCoupling(batterHead, carryHead, air),
       outside(cfg.cavity.model == AirModel::airbox ? OutsideAirSpec {} : cfg.outside, cfg.batter, cfg.carry, k),
-      outsideCoupling(batterHead, carryHead, outside), listeners(cfg, batterHead, carryHead),
+      outsideCoupling(batterHead, carryHead, outside), modes(cfg.cavity, cfg.cavityModesUpTo_Hz(), cfg.batter.radius_m, k),
+      modesCoupling(batterHead, carryHead, modes, cfg.cavity.modeCellSize_m), listeners(cfg, batterHead, carryHead),
       engaged(cfg.snares.engaged)
 {
     if (cfg.cavity.model == AirModel::airbox)
@@ -168,6 +170,7 @@ void Drum::applyLive(const DrumConfig& next) noexcept
     wires.setCoefficients(n.snares.tension_N, n.snares.sigma0_per_s, n.snares.sigma1_m2_per_s);
     snareCoupling.setLaw(n.snares.stiffness, n.snares.exponent);
     air.setSpec(n.cavity, n.batter.radius_m);
+    modes.setSpec(n.cavity, n.batter.radius_m);
     for (auto& m : mallets)
         m.setSpec(n.mallet); // a mallet in flight keeps its position; its patch changes at the next strike
     auto moved = [](const AirPoint& a, const AirPoint& b) { return a.x_m != b.x_m || a.y_m != b.y_m || a.z_m != b.z_m; };
@@ -180,7 +183,10 @@ void Drum::applyLive(const DrumConfig& next) noexcept
     }
     const HeadPrecision heads[2] = { cfg.batter.precision, cfg.carry.precision }; // the grids' own
     const OutsideAirSpec outsideSpec = cfg.outside; // the model's own, like the grids
+    const double modesUpTo = cfg.cavity.modesUpTo_Hz, modeCells = cfg.cavity.modeCellSize_m;
     cfg = n;
+    cfg.cavity.modesUpTo_Hz = modesUpTo;
+    cfg.cavity.modeCellSize_m = modeCells;
     cfg.batter.precision = heads[0];
     cfg.carry.precision = heads[1];
     cfg.outside = outsideSpec;
@@ -260,6 +266,8 @@ template <class Lap>
     // 1. The components' free updates, with the cavity's and the outside air's pressures at
     //    time n on the heads (explicit, CavityCoupling.h, OutsideAirCoupling.h).
     HeadPressure b, c; // the outside air's, 0 without it
+    if (modes.active())
+        modes.computeFree();
     if (outside.active())
     {
         outside.computeFree();
@@ -270,6 +278,11 @@ template <class Lap>
     lap(StepPhase::batterFree);
     carryHead.computeFree(airCoupling.pressureOnCarry() + c.p0, c.px, c.py);   // eq. (23) without snare and end forces
     lap(StepPhase::carryFree);
+    if (modes.active())
+    {
+        modesCoupling.applyPressures(); // the cavity's modes at n, on the heads' cells
+        lap(StepPhase::cavity);
+    }
     if (engaged)
     {
         wires.computeFree();                                // eq. (28) without collision and end forces
@@ -394,6 +407,8 @@ double Drum::stepWith(Lap& lap)
     lap(StepPhase::malletsFree);
 
     airCoupling.step(); // dV^{n+1}
+    if (modes.active())
+        modesCoupling.step(); // the modes' q^{n+1}
     if (outside.active())
         outsideCoupling.step(); // q^{n+1}
     lap(box.active() ? StepPhase::signals : StepPhase::cavity); // the air box path counts it with the signals
@@ -424,6 +439,8 @@ double Drum::stepWith(Lap& lap)
         snareCoupling.advance();
     }
     air.advance();
+    if (modes.active())
+        modes.advance();
     if (outside.active())
         outside.advance();
     if (box.active())
@@ -476,6 +493,7 @@ void Drum::reset()
     wires.clear();
     snareCoupling.clear();
     air.clear();
+    modes.clear();
     outside.clear();
     box.clear();
     for (auto& m : mallets)

@@ -9,6 +9,8 @@
 #include "Articulations.h"
 #include "Cavity.h"
 #include "CavityCoupling.h"
+#include "CavityModes.h"
+#include "CavityModesCoupling.h"
 #include "DrumAir.h"
 #include "DrumConfig.h"
 #include "DrumSnapshot.h"
@@ -126,6 +128,7 @@ public:
     const SnareContact& snareContact() const { return snareCoupling; }
     const Cavity& cavity() const { return air; }
     const OutsideAir& outsideAir() const { return outside; }
+    const CavityModes& cavityModes() const { return modes; }
     // The air box (AirModel::airbox): active() false otherwise.
     const DrumAir& airBox() const { return box; }
     const PressureMicrophones& microphones() const { return listeners; }
@@ -166,6 +169,8 @@ private:
     CavityCoupling airCoupling;  // coupling: heads - cavity
     OutsideAir outside;          // component: the outside air's channels; inactive without
     OutsideAirCoupling outsideCoupling; // coupling: heads - outside air
+    CavityModes modes;           // component: the enclosed air's own modes; inactive without
+    CavityModesCoupling modesCoupling; // coupling: heads - cavity modes
     DrumAir box;                 // component (air box) with its couplings to the heads; inactive without
     std::vector<double> wiresSaved; // air box: the wires' free u^{n+1}, for the joint solve's trials
     std::array<double, MalletContact::maxMallets> malletsSaved {};

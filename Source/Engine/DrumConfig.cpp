@@ -1,6 +1,7 @@
 #include "DrumConfig.h"
 
 #include "Cavity.h"
+#include "CavityModes.h"
 #include "Membrane.h"
 #include "OutsideAir.h"
 #include "SnareWires.h"
@@ -258,7 +259,15 @@ double DrumConfig::kineticReserve(bool ofBatter) const
     const MembraneSpec& head = ofBatter ? batter : carry;
     // the two bounds add (the cavity's already doubled for margin, OutsideAir.h's)
     const double air = cavity.model == AirModel::airbox ? 0.0 : OutsideAir::kineticReserve(outside, batter, carry, k, ofBatter);
-    return Cavity::kineticReserve(cavity, head.radius_m, head.density_kg_per_m2, k) + air;
+    return Cavity::kineticReserve(cavity, head.radius_m, head.density_kg_per_m2, k)
+         + CavityModes::kineticReserve(cavity, cavityModesUpTo_Hz(), head.radius_m, head.density_kg_per_m2, k) + air;
+}
+
+double DrumConfig::cavityModesUpTo_Hz() const
+{
+    if (cavity.model != AirModel::cavity)
+        return 0.0;
+    return cavity.modesUpTo_Hz;
 }
 
 DrumConfig::DrumConfig() : DrumConfig(mapParameters(ParameterSet {}, 48000.0)) {}

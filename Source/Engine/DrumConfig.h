@@ -88,6 +88,11 @@ struct CavitySpec
     double gridShellDepth_m = 0.0;      // shallowest depth the grid allows (0: the depth itself)
     double airDensity_kg_per_m3 = 1.21;
     double soundSpeed_m_per_s = 343.0;
+    // The enclosed air's own modes (CavityModes.h) up to this frequency, on the heads through
+    // square cells of this size (0: the uniform pressure alone, the default). Not a parameter:
+    // the outside air's channels are calibrated without them (docs/MODEL.md, "Cavity modes").
+    double modesUpTo_Hz = 0.0;
+    double modeCellSize_m = 0.02;
 };
 
 // The outside air of the reduced model (OutsideAir.h): six radiation channels, each a mass M in
@@ -179,6 +184,9 @@ struct DrumConfig
     // Share of a head's kinetic energy kept in its grid for the explicit couplings (the cavity,
     // the outside air): Membrane's kineticReserve.
     double kineticReserve(bool ofBatter) const;
+    // The cavity's modes up to this frequency (CavityModes.h): CavitySpec::modesUpTo_Hz with the
+    // reduced cavity, none in the air box or without air.
+    double cavityModesUpTo_Hz() const;
 
     // All losses off (sigma0 = sigma1 = 0, the air box's walls reflecting and sigma_a = 0,
     // the outside air's resistances open):

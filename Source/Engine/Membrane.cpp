@@ -401,6 +401,45 @@ void Membrane::blockAccelerationsIn(int side, int ix0, int iy0, int columns, int
         out[b] *= h * h;
 }
 
+namespace
+{
+// row[ix] += add[ix] for ix in [begin, end); returns the change of the row's sum.
+template <class Real>
+SNARESIM_WIDE_VECTOR_CLONES double addToRow(Real* __restrict row, const double* __restrict add, int begin, int end)
+{
+    double change = 0.0;
+#pragma omp simd reduction(+ : change)
+    for (int ix = begin; ix < end; ++ix)
+    {
+        const Real before = row[ix];
+        row[ix] = before + (Real) add[ix];
+        change += (double) row[ix] - (double) before;
+    }
+    return change;
+}
+} // namespace
+
+void Membrane::addBlockPressure(int side, const double* perBlock)
+{
+    const int n = g.width(), blocks = (n + side - 1) / side;
+    const double gain = forceGain();
+    double* add = accScratch.data(); // a band's pressures node by node along the row
+    double change = 0.0;
+    for (int iy = 1; iy < n - 1; ++iy)
+    {
+        if (iy == 1 || iy % side == 0)
+        {
+            const double* p = perBlock + (size_t) (iy / side) * (size_t) blocks;
+            for (int bx = 0; bx < blocks; ++bx)
+                std::fill(add + bx * side, add + std::min(n, (bx + 1) * side), gain * p[bx]);
+        }
+        const int begin = rowBegin[(size_t) iy], end = rowEnd[(size_t) iy];
+        change += single ? addToRow(fNext.data() + (size_t) iy * (size_t) n, add, begin, end)
+                         : addToRow(wNext.data() + (size_t) iy * (size_t) n, add, begin, end);
+    }
+    sumNext += change;
+}
+
 void Membrane::applyForce(const GridDistribution& d, double force)
 {
     const double c = forceGain() * force;

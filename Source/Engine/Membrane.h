@@ -52,6 +52,10 @@ public:
     // h^2 sum(w^{n+1} - 2 w^n + w^{n-1}) over the blocks of side x side nodes of the rectangle
     // of columns x rows nodes from node (ix0, iy0) (inside the grid), into out row by row.
     void blockAccelerationsIn(int side, int ix0, int iy0, int columns, int rows, double* out) const;
+    // Add a pressure (Pa, pushing up) uniform over each block of side x side nodes (as
+    // blockSumsNext's blocks; perBlock[by * blocks + bx]) to w^{n+1}: w += k^2/(rho q) p at every
+    // interior node. The cavity's modes (CavityModesCoupling).
+    void addBlockPressure(int side, const double* perBlock);
     // Add an external force f (N, positive up) spread by g to w^{n+1}: w += k^2/(rho q) g f,
     // times the node's response (below).
     void applyForce(const GridDistribution& d, double force_N);

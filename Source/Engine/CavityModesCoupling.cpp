@@ -1,0 +1,106 @@
+#include "CavityModesCoupling.h"
+
+#include "VectorClones.h"
+
+#include <algorithm>
+
+namespace snaresim
+{
+
+CavityModesCoupling::Face CavityModesCoupling::makeFace(Membrane& head, double sign, double cellSize) const
+{
+    Face f { &head, HeadCells(head.grid(), cellSize), sign, {}, {}, {}, {}, {} };
+    const double R = head.grid().radius();
+    for (int s = 0; s < air.shapes(); ++s)
+    {
+        int i = 0;
+        while (air.mode(i).shape != s)
+            ++i;
+        const CavityMode mode = air.mode(i);
+        const std::vector<double> mean = f.cells.meanOver([&](double x, double y) { return CavityModes::faceShape(mode, R, x, y); });
+        f.shape.insert(f.shape.end(), mean.begin(), mean.end());
+    }
+    f.blockSum.assign((size_t) (f.cells.blocks * f.cells.blocks), 0.0);
+    f.pressure = f.blockSum;
+    f.perShape.assign((size_t) air.shapes(), 0.0);
+    f.cellValue.assign((size_t) f.cells.cells(), 0.0);
+    return f;
+}
+
+CavityModesCoupling::CavityModesCoupling(Membrane& batter, Membrane& carry, CavityModes& modes, double cellSize)
+    : air(modes), faces { makeFace(batter, 1.0, cellSize), makeFace(carry, -1.0, cellSize) }
+{
+}
+
+namespace
+{
+// out[c] = sum_s weight[s] shape[s][c] over the shapes (shape-major, cells a row).
+SNARESIM_WIDE_VECTOR_CLONES void combineShapes(int shapes, int cells, const double* __restrict weight, const double* __restrict shape,
+                                               double* __restrict out)
+{
+    std::fill(out, out + cells, 0.0);
+    for (int s = 0; s < shapes; ++s)
+    {
+        const double w = weight[s];
+        const double* row = shape + (size_t) s * (size_t) cells;
+#pragma omp simd
+        for (int c = 0; c < cells; ++c)
+            out[c] += w * row[c];
+    }
+}
+// out[s] = scale sum_c shape[s][c] v[c].
+SNARESIM_WIDE_VECTOR_CLONES void projectShapes(int shapes, int cells, const double* __restrict shape, const double* __restrict v,
+                                               double scale, double* __restrict out)
+{
+    for (int s = 0; s < shapes; ++s)
+    {
+        const double* row = shape + (size_t) s * (size_t) cells;
+        double sum = 0.0;
+#pragma omp simd reduction(+ : sum)
+        for (int c = 0; c < cells; ++c)
+            sum += row[c] * v[c];
+        out[s] = scale * sum;
+    }
+}
+} // namespace
+
+void CavityModesCoupling::applyPressures() noexcept
+{
+    if (! air.active())
+        return;
+    for (int fi = 0; fi < 2; ++fi)
+    {
+        Face& f = faces[(size_t) fi];
+        std::fill(f.perShape.begin(), f.perShape.end(), 0.0);
+        for (int i = 0; i < air.size(); ++i) // on the carry head, Phi is (-1)^p times the face shape
+            f.perShape[(size_t) air.mode(i).shape] += (fi == 1 && (air.mode(i).p & 1) ? -f.sign : f.sign) * air.pressure(i);
+        const int cells = f.cells.cells();
+        combineShapes(air.shapes(), cells, f.perShape.data(), f.shape.data(), f.cellValue.data());
+        for (int c = 0; c < cells; ++c)
+            f.pressure[(size_t) f.cells.block[(size_t) c]] = f.cellValue[(size_t) c];
+        f.head->addBlockPressure(f.cells.side, f.pressure.data());
+    }
+}
+
+void CavityModesCoupling::step() noexcept
+{
+    if (! air.active())
+        return;
+    for (Face& f : faces)
+    {
+        f.head->blockSumsNext(f.cells.side, f.blockSum.data());
+        const int cells = f.cells.cells();
+        for (int c = 0; c < cells; ++c)
+            f.cellValue[(size_t) c] = f.blockSum[(size_t) f.cells.block[(size_t) c]];
+        const double area = f.head->grid().spacing() * f.head->grid().spacing();
+        projectShapes(air.shapes(), cells, f.shape.data(), f.cellValue.data(), area, f.perShape.data());
+    }
+    double* q = air.coordinatesNext();
+    for (int i = 0; i < air.size(); ++i)
+    {
+        const size_t s = (size_t) air.mode(i).shape;
+        q[i] = faces[0].perShape[s] - (air.mode(i).p & 1 ? -1.0 : 1.0) * faces[1].perShape[s];
+    }
+}
+
+} // namespace snaresim

@@ -1,0 +1,81 @@
+// The enclosed air's own modes (CavityModes.h): the rigid cylinder's frequencies from the zeros
+// of J_m', the lossless whole drum with them, and their coupling's symmetry.
+
+#include "TestDrums.h"
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+using namespace snaresim;
+
+namespace
+{
+DrumConfig withModes(DrumConfig c, double upTo_Hz)
+{
+    c.cavity.modesUpTo_Hz = upTo_Hz;
+    return c;
+}
+} // namespace
+
+TEST_CASE("cavity modes: the zeros of J_m' are the tabulated ones", "[cavitymodes]")
+{
+    // Abramowitz and Stegun, table 9.5 (j'_{m,n}, the zero at 0 of J_0' not counted)
+    CHECK(CavityModes::besselPrimeZero(1, 1) == Approx(1.84118).epsilon(1e-5));
+    CHECK(CavityModes::besselPrimeZero(2, 1) == Approx(3.05424).epsilon(1e-5));
+    CHECK(CavityModes::besselPrimeZero(0, 1) == Approx(3.83171).epsilon(1e-5));
+    CHECK(CavityModes::besselPrimeZero(3, 1) == Approx(4.20119).epsilon(1e-5));
+    CHECK(CavityModes::besselPrimeZero(1, 2) == Approx(5.33144).epsilon(1e-5));
+    CHECK(CavityModes::besselPrimeZero(0, 2) == Approx(7.01559).epsilon(1e-5));
+}
+
+TEST_CASE("cavity modes: the default drum's, by frequency", "[cavitymodes]")
+{
+    const DrumConfig cfg = withModes(DrumConfig {}, 1400.0);
+    const CavityModes modes(cfg.cavity, cfg.cavityModesUpTo_Hz(), cfg.batter.radius_m, 1.0 / cfg.sampleRate_Hz);
+    const double R = cfg.batter.radius_m, H = cfg.cavity.shellDepth_m, c = cfg.cavity.soundSpeed_m_per_s;
+    REQUIRE(modes.size() >= 9);
+    // (1,1,0) twice, (2,1,0) twice, (0,1,0), (0,0,1), (3,1,0) twice, (1,1,1) twice
+    CHECK(modes.mode(0).m == 1);
+    CHECK(modes.mode(1).m == 1);
+    CHECK(modes.mode(0).sine != modes.mode(1).sine);
+    CHECK(modes.frequency_Hz(0) == Approx(1.84118 * c / (2.0 * std::numbers::pi * R)).epsilon(1e-5));
+    CHECK(modes.frequency_Hz(2) == Approx(3.05424 * c / (2.0 * std::numbers::pi * R)).epsilon(1e-5));
+    bool axial = false;
+    for (int i = 0; i < modes.size(); ++i)
+    {
+        CHECK(modes.frequency_Hz(i) <= 1400.0);
+        if (i > 0)
+            CHECK(modes.frequency_Hz(i) >= modes.frequency_Hz(i - 1));
+        if (modes.mode(i).m == 0 && modes.mode(i).n == 0)
+        {
+            axial = true;
+            CHECK(modes.frequency_Hz(i) == Approx(c / (2.0 * H)).epsilon(1e-9));
+        }
+    }
+    CHECK(axial);
+}
+
+TEST_CASE("cavity modes: the lossless whole drum with them conserves energy to round-off", "[cavitymodes][energy]")
+{
+    DrumConfig cfg = withModes(test::wholeDrum(), 2500.0); // 20 wires, double heads
+    cfg.outside.enabled = GENERATE(false, true);
+    cfg.snares.scheme = GENERATE(CollisionScheme::newton, CollisionScheme::quadratised);
+    Drum drum(cfg.lossless());
+    REQUIRE(drum.cavityModes().size() > 10);
+    drum.setEnergyTracking(true);
+    drum.strike(5.0, 0.3, 0.1);
+    const double e0 = drum.energy().total(), b0 = drum.energy().balance();
+    double drift = 0.0, largest = 0.0;
+    for (int n = 0; n < 10000; ++n)
+    {
+        drum.step();
+        drift = std::max(drift, std::abs(drum.energy().balance() - b0) / e0);
+        largest = std::max(largest, std::abs(drum.energy().value("cavity modes")));
+    }
+    INFO("relative variation " << drift << ", the modes' largest energy " << largest / e0 << " of the strike's");
+    CHECK(drift < 1e-11);
+    CHECK(largest > 1e-4 * e0); // the modes really hold energy
+}
