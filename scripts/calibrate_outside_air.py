@@ -10,7 +10,7 @@ Gauss-Newton steps on the logarithms until the reduced drum gives the same figur
 each step and the values to put into OutsideAirSpec (Source/Engine/DrumConfig.h).
 
 usage: calibrate_outside_air.py F_IN D_IN F_ANTI D_ANTI F_B11 D_B11 F_C11 D_C11
-                                [--start Mm Rm Md Rd Ms Rs Mt Rt] [--steps N]
+                                [--start Mm Rm Md Rd Ms Rs Mt Rt] [--steps N] [--modes-up-to HZ]
 """
 
 import argparse
@@ -25,8 +25,8 @@ TOOL = "build/Tests/Engine/airbox_figures"
 NAMES = ["in phase", "anti-phase", "batter (1,1)", "carry (1,1)"]
 
 
-def measure(params, anti_near):
-    out = subprocess.run([TOOL, "modes-model", *[f"{p:.9g}" for p in params], f"{anti_near:.6g}"],
+def measure(params, anti_near, modes_up_to=0.0):
+    out = subprocess.run([TOOL, "modes-model", *[f"{p:.9g}" for p in params], f"{anti_near:.6g}", f"{modes_up_to:.6g}"],
                          capture_output=True, text=True, check=True).stdout
     figures = []
     for name in NAMES:
@@ -40,13 +40,15 @@ def main():
     ap.add_argument("target", type=float, nargs=8)
     ap.add_argument("--start", type=float, nargs=8, default=[1.25, 5e4, 2.0, 1.4e4, 225.0, 4e6, 225.0, 4e6])
     ap.add_argument("--steps", type=int, default=8)
+    ap.add_argument("--modes-up-to", type=float, default=0.0,
+                    help="the cavity's own modes up to this frequency (Hz) in the reduced drum (CavitySpec::modesUpTo_Hz)")
     a = ap.parse_args()
     target = np.log(np.array(a.target))
     x = np.log(np.array(a.start))
     # volume parameters move the pair, tilt parameters the (1,1) modes: two 4 x 4 blocks
     blocks = [(slice(0, 4), slice(0, 4)), (slice(4, 8), slice(4, 8))]
     for step in range(a.steps):
-        f = measure(np.exp(x), a.target[2])
+        f = measure(np.exp(x), a.target[2], a.modes_up_to)
         if not np.all(np.isfinite(f)) or np.any(f <= 0):
             sys.exit(f"a figure was not found at {np.exp(x)}: {f}")
         r = np.log(f) - target
@@ -60,7 +62,7 @@ def main():
         for j in range(8):
             xj = x.copy()
             xj[j] += eps
-            J[:, j] = (np.log(measure(np.exp(xj), a.target[2])) - np.log(f)) / eps
+            J[:, j] = (np.log(measure(np.exp(xj), a.target[2], a.modes_up_to)) - np.log(f)) / eps
         dx = np.zeros(8)
         for rows, cols in blocks:
             dx[cols] = np.linalg.lstsq(J[rows, cols], -r[rows], rcond=None)[0]

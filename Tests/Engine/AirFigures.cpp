@@ -11,9 +11,9 @@
 //   airbox_figures modes [BOX_SIDE_M] [STEPS]
 //       The drum's lowest modes (the (0,1) pair, each head's (1,1)) with lossless heads, snares
 //       off: in the cavity alone, with the outside air, and in the air box (absorbing walls).
-//   airbox_figures modes-model Mm Rm Md Rd Ms Rs Mt Rt ANTI_NEAR
+//   airbox_figures modes-model Mm Rm Md Rd Ms Rs Mt Rt ANTI_NEAR [MODES_UP_TO_HZ]
 //       The same for the cavity with outside air of the given channels (the calibration's
-//       inner loop, scripts/calibrate_outside_air.py).
+//       inner loop, scripts/calibrate_outside_air.py), and the cavity's modes up to a frequency.
 //   airbox_figures s52
 //       The paper's section 5.2 in the cavity and in the box, and the variations that test
 //       what moves the wires' timing: when they are lowest and when they are back on the head.
@@ -333,6 +333,8 @@ int modesModel(char** v)
     RadiationChannelSpec* ch[4] = { &cfg.outside.monopole, &cfg.outside.dipole, &cfg.outside.tiltSum, &cfg.outside.tiltDiff };
     for (int i = 0; i < 4; ++i)
             *ch[i] = { std::atof(v[2 * i]), std::atof(v[2 * i + 1]) };
+    if (v[8] && v[9])
+        cfg.cavity.modesUpTo_Hz = std::atof(v[9]);
     printModes("model", test::lowModes(cfg, 1 << 15, { 0.0, v[8] ? std::atof(v[8]) : 0.0 }));
     return 0;
 }
@@ -420,6 +422,6 @@ int main(int argc, char** argv)
         return modesModel(argv + 2);
     if (what == "band" && argc >= 3)
         return band(argv[2], argc > 3 ? std::atof(argv[3]) : 1.0, argc > 4 ? std::atof(argv[4]) : 0.6);
-    std::fprintf(stderr, "usage: airbox_figures band OUT_DIR [SECONDS] [BOX_SIDE_M] | pairs | modes [BOX_SIDE_M] [STEPS] | modes-model Mm Rm Md Rd Ms Rs Mt Rt ANTI_NEAR | s52\n");
+    std::fprintf(stderr, "usage: airbox_figures band OUT_DIR [SECONDS] [BOX_SIDE_M] | pairs | modes [BOX_SIDE_M] [STEPS] | modes-model Mm Rm Md Rd Ms Rs Mt Rt ANTI_NEAR [MODES_UP_TO_HZ] | s52\n");
     return 2;
 }
