@@ -9,8 +9,10 @@ namespace snaresim
 
 CavityModesCoupling::Face CavityModesCoupling::makeFace(Membrane& head, double sign, double cellSize) const
 {
-    Face f { &head, HeadCells(head.grid(), cellSize), sign, {}, {}, {}, {}, {} };
+    Face f { &head, HeadCells(head.grid(), cellSize), sign, {}, {}, {}, {} };
     const double R = head.grid().radius();
+    const size_t blocks = (size_t) (f.cells.blocks * f.cells.blocks);
+    f.shape.assign((size_t) air.shapes() * blocks, 0.0);
     for (int s = 0; s < air.shapes(); ++s)
     {
         int i = 0;
@@ -18,12 +20,13 @@ CavityModesCoupling::Face CavityModesCoupling::makeFace(Membrane& head, double s
             ++i;
         const CavityMode mode = air.mode(i);
         const std::vector<double> mean = f.cells.meanOver([&](double x, double y) { return CavityModes::faceShape(mode, R, x, y); });
-        f.shape.insert(f.shape.end(), mean.begin(), mean.end());
+        for (int c = 0; c < f.cells.cells(); ++c)
+            f.shape[(size_t) s * blocks + (size_t) f.cells.block[(size_t) c]] = mean[(size_t) c];
     }
-    f.blockSum.assign((size_t) (f.cells.blocks * f.cells.blocks), 0.0);
-    f.pressure = f.blockSum;
+    f.blockSum.assign(blocks, 0.0);
     f.perShape.assign((size_t) air.shapes(), 0.0);
-    f.cellValue.assign((size_t) f.cells.cells(), 0.0);
+    f.pressure = f.blockSum;
+    head.prepareBlocks(f.cells.side);
     return f;
 }
 
@@ -34,7 +37,7 @@ CavityModesCoupling::CavityModesCoupling(Membrane& batter, Membrane& carry, Cavi
 
 namespace
 {
-// out[c] = sum_s weight[s] shape[s][c] over the shapes (shape-major, cells a row).
+// out[b] = sum_s weight[s] shape[s][b] over the shapes (shape-major, the blocks a row).
 SNARESIM_WIDE_VECTOR_CLONES void combineShapes(int shapes, int cells, const double* __restrict weight, const double* __restrict shape,
                                                double* __restrict out)
 {
@@ -48,7 +51,7 @@ SNARESIM_WIDE_VECTOR_CLONES void combineShapes(int shapes, int cells, const doub
             out[c] += w * row[c];
     }
 }
-// out[s] = scale sum_c shape[s][c] v[c].
+// out[s] = scale sum_b shape[s][b] v[b].
 SNARESIM_WIDE_VECTOR_CLONES void projectShapes(int shapes, int cells, const double* __restrict shape, const double* __restrict v,
                                                double scale, double* __restrict out)
 {
@@ -74,11 +77,8 @@ void CavityModesCoupling::applyPressures() noexcept
         std::fill(f.perShape.begin(), f.perShape.end(), 0.0);
         for (int i = 0; i < air.size(); ++i) // on the carry head, Phi is (-1)^p times the face shape
             f.perShape[(size_t) air.mode(i).shape] += (fi == 1 && (air.mode(i).p & 1) ? -f.sign : f.sign) * air.pressure(i);
-        const int cells = f.cells.cells();
-        combineShapes(air.shapes(), cells, f.perShape.data(), f.shape.data(), f.cellValue.data());
-        for (int c = 0; c < cells; ++c)
-            f.pressure[(size_t) f.cells.block[(size_t) c]] = f.cellValue[(size_t) c];
-        f.head->addBlockPressure(f.cells.side, f.pressure.data());
+        combineShapes(air.shapes(), (int) f.pressure.size(), f.perShape.data(), f.shape.data(), f.pressure.data());
+        f.head->setBlockPressure(f.cells.side, f.pressure.data());
     }
 }
 
@@ -89,11 +89,8 @@ void CavityModesCoupling::step() noexcept
     for (Face& f : faces)
     {
         f.head->blockSumsNext(f.cells.side, f.blockSum.data());
-        const int cells = f.cells.cells();
-        for (int c = 0; c < cells; ++c)
-            f.cellValue[(size_t) c] = f.blockSum[(size_t) f.cells.block[(size_t) c]];
         const double area = f.head->grid().spacing() * f.head->grid().spacing();
-        projectShapes(air.shapes(), cells, f.shape.data(), f.cellValue.data(), area, f.perShape.data());
+        projectShapes(air.shapes(), (int) f.blockSum.size(), f.shape.data(), f.blockSum.data(), area, f.perShape.data());
     }
     double* q = air.coordinatesNext();
     for (int i = 0; i < air.size(); ++i)

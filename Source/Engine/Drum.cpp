@@ -267,7 +267,10 @@ template <class Lap>
     //    time n on the heads (explicit, CavityCoupling.h, OutsideAirCoupling.h).
     HeadPressure b, c; // the outside air's, 0 without it
     if (modes.active())
+    {
         modes.computeFree();
+        modesCoupling.applyPressures(); // the cavity's modes at n, on the heads' cells
+    }
     if (outside.active())
     {
         outside.computeFree();
@@ -278,11 +281,6 @@ template <class Lap>
     lap(StepPhase::batterFree);
     carryHead.computeFree(airCoupling.pressureOnCarry() + c.p0, c.px, c.py);   // eq. (23) without snare and end forces
     lap(StepPhase::carryFree);
-    if (modes.active())
-    {
-        modesCoupling.applyPressures(); // the cavity's modes at n, on the heads' cells
-        lap(StepPhase::cavity);
-    }
     if (engaged)
     {
         wires.computeFree();                                // eq. (28) without collision and end forces
@@ -420,7 +418,7 @@ double Drum::stepWith(Lap& lap)
         lap(StepPhase::energy);
     }
 
-    listeners.listen(batterHead, carryHead);
+    listeners.listen(batterHead, carryHead, { modesCoupling.blockSums(0, listeners.cellSide(0)), modesCoupling.blockSums(1, listeners.cellSide(1)) });
     const bool boxMics = box.active() && cfg.air.numMics == 0; // the box's microphones are the drum's
     signals.top_Pa = boxMics ? box.micPressure(0) : listeners.pressure(PressureMicrophones::top);
     signals.bottom_Pa = boxMics ? box.micPressure(1) : listeners.pressure(PressureMicrophones::bottom);

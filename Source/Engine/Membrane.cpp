@@ -105,11 +105,12 @@ void Membrane::setCoefficients(double tension, double s0, double s1)
 namespace
 {
 // One row of eq. (22): out = c0 w + c1 (4 neighbours of w) + d0 wp + d1 (4 neighbours of wp) + push
-// (+ slope m along the row with Tilt), for `count` nodes that all lie inside the disc; returns the
-// sum of out.
-template <bool Tilt>
+// (+ slope m along the row with Tilt, + field[m] with Field), for `count` nodes that all lie inside
+// the disc; returns the sum of out.
+template <bool Tilt, bool Field>
 SNARESIM_WIDE_VECTOR_CLONES double updateRow(double* __restrict out, const double* __restrict w, const double* __restrict wp,
-                                        int n, int count, double c0, double c1, double d0, double d1, double push, double slope)
+                                        const double* __restrict field, int n, int count, double c0, double c1, double d0,
+                                        double d1, double push, double slope)
 {
     double sum = 0.0; // summed on the way (vector lanes)
 #pragma omp simd reduction(+ : sum)
@@ -122,6 +123,8 @@ SNARESIM_WIDE_VECTOR_CLONES double updateRow(double* __restrict out, const doubl
             next = c0 * w[m] + c1 * nb + d0 * wp[m] + d1 * nbp + (push + slope * (double) m);
         else
             next = c0 * w[m] + c1 * nb + d0 * wp[m] + d1 * nbp + push;
+        if constexpr (Field)
+            next += field[m];
         out[m] = next;
         sum += next;
     }
@@ -135,12 +138,13 @@ SNARESIM_WIDE_VECTOR_CLONES double updateRow(double* __restrict out, const doubl
 // Laplacian, so that no coefficient near 2 multiplies w: a float
 // coefficient's rounding then moves the modes by parts in 1e8 of their small restoring term,
 // not of 2 w. Returns the sum of out, in double.
-// With Tilt, a pressure px x + py y is added (xs, ys: x and y times the mask).
-template <bool Tilt>
+// With Tilt, a pressure px x + py y is added (xs, ys: x and y times the mask); with Field, a push
+// per node (field, times the mask).
+template <bool Tilt, bool Field>
 SNARESIM_WIDE_VECTOR_CLONES double updateGridFloat(float* __restrict out, const float* __restrict w, const float* __restrict wp,
                                                    const float* __restrict mask, const float* __restrict xs,
-                                                   const float* __restrict ys, int n, int count, float r, float cl, float cs,
-                                                   float push, float px, float py)
+                                                   const float* __restrict ys, const float* __restrict field, int n, int count,
+                                                   float r, float cl, float cs, float push, float px, float py)
 {
     double sum = 0.0; // summed on the way, in double (vector lanes: the order is not the rows')
 #pragma omp simd reduction(+ : sum)
@@ -149,12 +153,15 @@ SNARESIM_WIDE_VECTOR_CLONES double updateGridFloat(float* __restrict out, const 
         const float c = w[m], v = c - wp[m];
         const float nb = w[m - 1] + w[m + 1] + w[m - n] + w[m + n];
         const float nbp = wp[m - 1] + wp[m + 1] + wp[m - n] + wp[m + n];
+        float p = push;
+        if constexpr (Field)
+            p += field[m];
         float next;
         if constexpr (Tilt)
-            next = mask[m] * (c + (r * v + cl * (nb - 4.0f * c) + cs * ((nb - nbp) - 4.0f * v) + push))
+            next = mask[m] * (c + (r * v + cl * (nb - 4.0f * c) + cs * ((nb - nbp) - 4.0f * v) + p))
                  + (px * xs[m] + py * ys[m]);
         else
-            next = mask[m] * (c + (r * v + cl * (nb - 4.0f * c) + cs * ((nb - nbp) - 4.0f * v) + push));
+            next = mask[m] * (c + (r * v + cl * (nb - 4.0f * c) + cs * ((nb - nbp) - 4.0f * v) + p));
         out[m] = next;
         sum += (double) next;
     }
@@ -345,14 +352,19 @@ void Membrane::computeFree(double p0, double px, double py)
     const double gain = forceGain();
     const double push = gain * p0; // eq. (22) with the pressure term, force density p
     const bool tilt = px != 0.0 || py != 0.0;
+    const bool field = fieldSet;
+    fieldSet = false; // a block pressure acts on one step
     if (single)
     {
         // rows 1 .. n-2, whole: every neighbour read stays inside the padded grid
-        const auto update = tilt ? updateGridFloat<true> : updateGridFloat<false>;
-        sumNext = update(fNext.data() + n, fNow.data() + n, fPrev.data() + n, fMask.data() + n, fX.data() + n, fY.data() + n, n,
-                         n * (n - 2), r, cl, cs, (float) push, (float) (gain * px), (float) (gain * py));
+        const auto update = tilt ? (field ? updateGridFloat<true, true> : updateGridFloat<true, false>)
+                                 : (field ? updateGridFloat<false, true> : updateGridFloat<false, false>);
+        sumNext = update(fNext.data() + n, fNow.data() + n, fPrev.data() + n, fMask.data() + n, fX.data() + n, fY.data() + n,
+                         fField.data() + n, n, n * (n - 2), r, cl, cs, (float) push, (float) (gain * px), (float) (gain * py));
         return;
     }
+    const auto update = tilt ? (field ? updateRow<true, true> : updateRow<true, false>)
+                             : (field ? updateRow<false, true> : updateRow<false, false>);
     double sum = 0.0;
     for (int iy = 1; iy < n - 1; ++iy)
     {
@@ -360,11 +372,8 @@ void Membrane::computeFree(double p0, double px, double py)
         const int count = rowEnd[(size_t) iy] - rowBegin[(size_t) iy];
         if (count <= 0)
             continue;
-        if (tilt)
-            sum += updateRow<true>(wNext.data() + begin, wNow.data() + begin, wPrev.data() + begin, n, count, a0, a1, b0, b1,
-                                   push + gain * (px * g.x(rowBegin[(size_t) iy]) + py * g.x(iy)), gain * px * h);
-        else
-            sum += updateRow<false>(wNext.data() + begin, wNow.data() + begin, wPrev.data() + begin, n, count, a0, a1, b0, b1, push, 0.0);
+        sum += update(wNext.data() + begin, wNow.data() + begin, wPrev.data() + begin, dField.data() + begin, n, count, a0, a1, b0,
+                      b1, tilt ? push + gain * (px * g.x(rowBegin[(size_t) iy]) + py * g.x(iy)) : push, tilt ? gain * px * h : 0.0);
     }
     sumNext = sum;
 }
@@ -403,41 +412,65 @@ void Membrane::blockAccelerationsIn(int side, int ix0, int iy0, int columns, int
 
 namespace
 {
-// row[ix] += add[ix] for ix in [begin, end); returns the change of the row's sum.
+// out[ix] = scale * perBlock[block[ix]] along a row (a band's blocks, node by node).
 template <class Real>
-SNARESIM_WIDE_VECTOR_CLONES double addToRow(Real* __restrict row, const double* __restrict add, int begin, int end)
+SNARESIM_WIDE_VECTOR_CLONES void expandRow(int n, const int* __restrict block, const double* __restrict perBlock, double scale,
+                                           Real* __restrict out)
 {
-    double change = 0.0;
-#pragma omp simd reduction(+ : change)
-    for (int ix = begin; ix < end; ++ix)
+#pragma omp simd
+    for (int ix = 0; ix < n; ++ix)
+        out[ix] = (Real) (scale * perBlock[block[ix]]);
+}
+// A band's first row copied to its other rows.
+template <class Real>
+SNARESIM_WIDE_VECTOR_CLONES void copyRows(Real* band, int n, int rows)
+{
+    const Real* __restrict first = band;
+    for (int r = 1; r < rows; ++r)
     {
-        const Real before = row[ix];
-        row[ix] = before + (Real) add[ix];
-        change += (double) row[ix] - (double) before;
+        Real* __restrict row = band + (size_t) r * (size_t) n;
+#pragma omp simd
+        for (int ix = 0; ix < n; ++ix)
+            row[ix] = first[ix];
     }
-    return change;
 }
 } // namespace
 
-void Membrane::addBlockPressure(int side, const double* perBlock)
+void Membrane::prepareBlocks(int side)
 {
+    const int n = g.width();
+    blockSide = side;
+    columnBlock.resize((size_t) n);
+    for (int ix = 0; ix < n; ++ix)
+        columnBlock[(size_t) ix] = ix / side;
+    if (single)
+        fField.assign((size_t) g.numNodes(), 0.0f);
+    else
+        dField.assign((size_t) g.numNodes(), 0.0);
+}
+
+void Membrane::setBlockPressure(int side, const double* perBlock)
+{
+    if (side != blockSide)
+        return; // prepareBlocks(side) first: no allocation here
     const int n = g.width(), blocks = (n + side - 1) / side;
     const double gain = forceGain();
-    double* add = accScratch.data(); // a band's pressures node by node along the row
-    double change = 0.0;
-    for (int iy = 1; iy < n - 1; ++iy)
+    for (int by = 0; by < blocks; ++by)
     {
-        if (iy == 1 || iy % side == 0)
+        const int first = by * side, rows = std::min(n, first + side) - first;
+        const size_t o = (size_t) first * (size_t) n;
+        if (single)
         {
-            const double* p = perBlock + (size_t) (iy / side) * (size_t) blocks;
-            for (int bx = 0; bx < blocks; ++bx)
-                std::fill(add + bx * side, add + std::min(n, (bx + 1) * side), gain * p[bx]);
+            expandRow(n, columnBlock.data(), perBlock + (size_t) by * (size_t) blocks, gain, fField.data() + o);
+            copyRows(fField.data() + o, n, rows);
         }
-        const int begin = rowBegin[(size_t) iy], end = rowEnd[(size_t) iy];
-        change += single ? addToRow(fNext.data() + (size_t) iy * (size_t) n, add, begin, end)
-                         : addToRow(wNext.data() + (size_t) iy * (size_t) n, add, begin, end);
+        else
+        {
+            expandRow(n, columnBlock.data(), perBlock + (size_t) by * (size_t) blocks, gain, dField.data() + o);
+            copyRows(dField.data() + o, n, rows);
+        }
     }
-    sumNext += change;
+    fieldSet = true;
 }
 
 void Membrane::applyForce(const GridDistribution& d, double force)

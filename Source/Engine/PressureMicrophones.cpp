@@ -284,15 +284,20 @@ void PressureMicrophones::push(std::vector<double>& ring, const Tap& t, double v
     ring[((size_t) pos + (size_t) t.delay + 1) & mask] += t.gain * t.frac * value;
 }
 
-void PressureMicrophones::listen(const Membrane& batter, const Membrane& carry) noexcept
+void PressureMicrophones::listen(const Membrane& batter, const Membrane& carry, std::array<const double*, 2> sums) noexcept
 {
     const Membrane* membranes[2] = { &batter, &carry };
     const double inverseKk = 1.0 / (k * k);
     for (int hi = 0; hi < 2; ++hi)
     {
         Head& h = heads[(size_t) hi];
-        membranes[hi]->blockSumsNext(h.side, h.blockSum.data()); // volumes / h^2
-        h.accel[(size_t) h.cells] = cellAccelerations(h.cells, h.block.data(), h.blockSum.data(), h.sign * h.nodeArea, inverseKk,
+        const double* blockSum = sums[(size_t) hi];
+        if (blockSum == nullptr)
+        {
+            membranes[hi]->blockSumsNext(h.side, h.blockSum.data()); // volumes / h^2
+            blockSum = h.blockSum.data();
+        }
+        h.accel[(size_t) h.cells] = cellAccelerations(h.cells, h.block.data(), blockSum, h.sign * h.nodeArea, inverseKk,
                                                       h.vNow.data(), h.vPrev.data(), h.accel.data());
     }
     const size_t mask = (size_t) rows - 1;

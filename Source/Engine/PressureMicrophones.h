@@ -56,7 +56,10 @@ public:
 
     // Once the heads' w^{n+1} is final: the cells' volumes at n+1, their accelerations at n,
     // and the pressures at the microphones.
-    void listen(const Membrane& batter, const Membrane& carry) noexcept;
+    // sums: each head's Membrane::blockSumsNext at its cells' side for this step, if a coupling
+    // already has them (CavityModesCoupling), else nullptr.
+    void listen(const Membrane& batter, const Membrane& carry, std::array<const double*, 2> sums = {}) noexcept;
+    int cellSide(int head) const { return heads[(size_t) head].side; }
     double pressure(Position p) const { return out[(size_t) p]; }
 
     void clear() noexcept;

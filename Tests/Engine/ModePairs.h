@@ -54,7 +54,7 @@ inline ModePair measuredPairs(const SweptVolumes& v, ModePair expected)
     const auto B = hannSpectrum(vb), C = hannSpectrum(vc);
     const double binHz = v.sampleRate_Hz / (2.0 * (double) B.size());
     // In-phase modes show in the sum of the swept volumes, anti-phase ones in the difference
-    // (the cavity's dV). The peak taken is the strongest within 5 % of `near`, within 60 dB of
+    // (the cavity's dV). The peak taken is the strongest within 5 % of `near`, within 80 dB of
     // the spectrum's strongest, whose batter/carry cross-spectrum has the matching phase;
     // with no `near`, the strongest such peak within 30 dB.
     auto find = [&](double sign, double near) {
@@ -64,7 +64,7 @@ inline ModePair measuredPairs(const SweptVolumes& v, ModePair expected)
         auto found = peaks(X, binHz, 100.0, 1000.0);
         if (found.empty())
             return 0.0;
-        const double floor = found.front().logMagnitude - std::log(near > 0.0 ? 1000.0 : 30.0);
+        const double floor = found.front().logMagnitude - std::log(near > 0.0 ? 1e4 : 30.0);
         for (const auto& p : found) // strongest first
         {
             const double phase = std::abs(std::arg(B[p.bin] * std::conj(C[p.bin])));
