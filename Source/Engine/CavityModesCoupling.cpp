@@ -10,6 +10,8 @@ namespace snaresim
 CavityModesCoupling::Face CavityModesCoupling::makeFace(Membrane& head, double sign, double cellSize) const
 {
     Face f { &head, HeadCells(head.grid(), cellSize), sign, {}, {}, {}, {} };
+    if (! air.active())
+        return f; // nothing to hold
     const double R = head.grid().radius();
     const size_t blocks = (size_t) (f.cells.blocks * f.cells.blocks);
     f.shape.assign((size_t) air.shapes() * blocks, 0.0);

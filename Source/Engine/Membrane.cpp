@@ -360,7 +360,8 @@ void Membrane::computeFree(double p0, double px, double py)
         const auto update = tilt ? (field ? updateGridFloat<true, true> : updateGridFloat<true, false>)
                                  : (field ? updateGridFloat<false, true> : updateGridFloat<false, false>);
         sumNext = update(fNext.data() + n, fNow.data() + n, fPrev.data() + n, fMask.data() + n, fX.data() + n, fY.data() + n,
-                         fField.data() + n, n, n * (n - 2), r, cl, cs, (float) push, (float) (gain * px), (float) (gain * py));
+                         field ? fField.data() + n : nullptr, n, n * (n - 2), r, cl, cs, (float) push, (float) (gain * px),
+                         (float) (gain * py));
         return;
     }
     const auto update = tilt ? (field ? updateRow<true, true> : updateRow<true, false>)
@@ -372,8 +373,9 @@ void Membrane::computeFree(double p0, double px, double py)
         const int count = rowEnd[(size_t) iy] - rowBegin[(size_t) iy];
         if (count <= 0)
             continue;
-        sum += update(wNext.data() + begin, wNow.data() + begin, wPrev.data() + begin, dField.data() + begin, n, count, a0, a1, b0,
-                      b1, tilt ? push + gain * (px * g.x(rowBegin[(size_t) iy]) + py * g.x(iy)) : push, tilt ? gain * px * h : 0.0);
+        sum += update(wNext.data() + begin, wNow.data() + begin, wPrev.data() + begin, field ? dField.data() + begin : nullptr, n, count,
+                      a0, a1, b0, b1, tilt ? push + gain * (px * g.x(rowBegin[(size_t) iy]) + py * g.x(iy)) : push,
+                      tilt ? gain * px * h : 0.0);
     }
     sumNext = sum;
 }
