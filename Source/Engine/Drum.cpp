@@ -67,7 +67,7 @@ auto Drum::energyTerms() const
                         EnergyTerm("mallets", mallets, malletCoupling),            // eq. (37)
                         EnergyTerm("snares", wires, snareCoupling).when(engaged),  // eq. (38)
                         EnergyTerm("cavity", air),                                 // (K/2) dV^{n+1} dV^n
-                        EnergyTerm("cavity modes", modes).listedIf(modes.active()), // CavityModes.h
+                        EnergyTerm("cavity_modes", modes).listedIf(modes.active()), // CavityModes.h
                         EnergyTerm("outside", outside).listedIf(outside.active()), // OutsideAir.h
                         EnergyTerm("airbox", box).listedIf(box.active()) };        // eq. (36)
 }

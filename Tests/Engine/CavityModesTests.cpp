@@ -74,7 +74,7 @@ TEST_CASE("cavity modes: the lossless whole drum with them conserves energy to r
     {
         drum.step();
         drift = std::max(drift, std::abs(drum.energy().balance() - b0) / e0);
-        largest = std::max(largest, std::abs(drum.energy().value("cavity modes")));
+        largest = std::max(largest, std::abs(drum.energy().value("cavity_modes")));
     }
     INFO("relative variation " << drift << ", the modes' largest energy " << largest / e0 << " of the strike's");
     CHECK(drift < 1e-11);
