@@ -68,14 +68,9 @@ TEST_CASE("cavity modes: the lossless whole drum with them conserves energy to r
     REQUIRE(drum.cavityModes().size() > 10);
     drum.setEnergyTracking(true);
     drum.strike(5.0, 0.3, 0.1);
-    const double e0 = drum.energy().total(), b0 = drum.energy().balance();
-    double drift = 0.0, largest = 0.0;
-    for (int n = 0; n < 10000; ++n)
-    {
-        drum.step();
-        drift = std::max(drift, std::abs(drum.energy().balance() - b0) / e0);
-        largest = std::max(largest, std::abs(drum.energy().value("cavity_modes")));
-    }
+    const double e0 = drum.energy().total();
+    double largest = 0.0;
+    const double drift = test::balanceDrift(drum, 10000, [&] { largest = std::max(largest, std::abs(drum.energy().value("cavity_modes"))); });
     INFO("relative variation " << drift << ", the modes' largest energy " << largest / e0 << " of the strike's");
     CHECK(drift < 1e-11);
     CHECK(largest > 1e-4 * e0); // the modes really hold energy
@@ -91,14 +86,8 @@ TEST_CASE("cavity modes: with single-precision heads the lossless drum holds its
     Drum drum(cfg.lossless());
     drum.setEnergyTracking(true);
     drum.strike(5.0, 0.3, 0.1);
-    const double e0 = drum.energy().total(), b0 = drum.energy().balance();
     const int steps = 20000;
-    double drift = 0.0;
-    for (int n = 0; n < steps; ++n)
-    {
-        drum.step();
-        drift = std::max(drift, std::abs(drum.energy().balance() - b0) / e0);
-    }
+    const double drift = test::balanceDrift(drum, steps);
     const double bound = FLT_EPSILON / 2.0 * std::sqrt((double) steps);
     INFO("relative energy variation " << drift << " (bound " << bound << ")");
     CHECK(drift < bound);

@@ -4,6 +4,7 @@
 #include "Drum.h"
 #include "Parameters.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace snaresim::test
@@ -52,6 +53,26 @@ inline DrumConfig lossyHead()
     c.batter.sigma0_per_s = 3.0 * std::log(10.0) / 1.0; // T60 = 1 s
     c.batter.sigma1_m2_per_s = 1.0e-3;
     return c;
+}
+
+// The largest relative change of a tracked drum's energy balance over `steps` steps, against its
+// total energy before them; each() after every step.
+template <class Each>
+double balanceDrift(Drum& drum, int steps, Each each)
+{
+    const double e0 = drum.energy().total(), b0 = drum.energy().balance();
+    double drift = 0.0;
+    for (int n = 0; n < steps; ++n)
+    {
+        drum.step();
+        drift = std::max(drift, std::abs(drum.energy().balance() - b0) / e0);
+        each();
+    }
+    return drift;
+}
+inline double balanceDrift(Drum& drum, int steps)
+{
+    return balanceDrift(drum, steps, [] {});
 }
 
 } // namespace snaresim::test
