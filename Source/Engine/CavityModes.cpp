@@ -161,19 +161,21 @@ CavityModes::CavityModes(const CavitySpec& spec, double upTo_Hz, double R, doubl
         numShapes = std::max(numShapes, mode.shape + 1);
     for (auto* v : { &K, &M, &qNow, &qNext, &zPrev, &zNow, &zNext, &vPrev, &vNext, &P })
         v->assign(modes.size(), 0.0);
-    setSpec(spec, R);
+    for (const CavityMode& mode : modes)
+        faceArea.push_back(faceNorm(mode, R));
+    radius = R;
+    setSpec(spec);
 }
 
-void CavityModes::setSpec(const CavitySpec& spec, double R)
+void CavityModes::setSpec(const CavitySpec& spec)
 {
     const double H = depthOf(spec), c = spec.soundSpeed_m_per_s;
     for (size_t i = 0; i < modes.size(); ++i)
     {
-        const double w = omegaOf(modes[i], R, H, c);
-        K[i] = spec.airDensity_kg_per_m3 * c * c / (faceNorm(modes[i], R) * axialNorm(modes[i].p, H));
+        const double w = omegaOf(modes[i], radius, H, c);
+        K[i] = spec.airDensity_kg_per_m3 * c * c / (faceArea[i] * axialNorm(modes[i].p, H));
         M[i] = K[i] / (w * w);
     }
-    radius = R;
     depth = H;
     speed = c;
 }

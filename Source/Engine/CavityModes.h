@@ -45,8 +45,9 @@ public:
     // Share of a head's kinetic energy the modes' explicit coupling needs (CavityModes.cpp).
     static double kineticReserve(const CavitySpec& spec, double upTo_Hz, double radius_m, double density_kg_per_m2, double timeStep_s);
 
-    // A new depth (not below the grid's design depth: Cavity::setSpec): K and omega. Real-time safe.
-    void setSpec(const CavitySpec& spec, double radius_m);
+    // A new depth (not below the grid's design depth: Cavity::setSpec): K and omega, from the face
+    // integrals kept since construction (no Bessel function here). Real-time safe.
+    void setSpec(const CavitySpec& spec);
 
     bool active() const { return ! modes.empty(); }
     int size() const { return (int) modes.size(); }
@@ -70,6 +71,7 @@ private:
     int numShapes = 0;
     double k = 0.0;
     double radius = 0.0, depth = 0.0, speed = 0.0;
+    std::vector<double> faceArea; // int Phi^2 dA over a face, per mode (the radius is the grid's)
     std::vector<double> K, M;
     std::vector<double> qNow, qNext, zPrev, zNow, zNext, vPrev, vNext, P;
 };

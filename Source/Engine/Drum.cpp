@@ -170,7 +170,7 @@ void Drum::applyLive(const DrumConfig& next) noexcept
     wires.setCoefficients(n.snares.tension_N, n.snares.sigma0_per_s, n.snares.sigma1_m2_per_s);
     snareCoupling.setLaw(n.snares.stiffness, n.snares.exponent);
     air.setSpec(n.cavity, n.batter.radius_m);
-    modes.setSpec(n.cavity, n.batter.radius_m);
+    modes.setSpec(n.cavity);
     for (auto& m : mallets)
         m.setSpec(n.mallet); // a mallet in flight keeps its position; its patch changes at the next strike
     auto moved = [](const AirPoint& a, const AirPoint& b) { return a.x_m != b.x_m || a.y_m != b.y_m || a.z_m != b.z_m; };
