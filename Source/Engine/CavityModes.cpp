@@ -1,6 +1,7 @@
 #include "CavityModes.h"
 
 #include "AirPort.h"
+#include "Bessel.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,14 +12,6 @@ namespace snaresim
 
 namespace
 {
-// J_m'(x)
-double besselPrime(int m, double x)
-{
-    if (m == 0)
-        return -std::cyl_bessel_j(1.0, x);
-    return 0.5 * (std::cyl_bessel_j((double) (m - 1), x) - std::cyl_bessel_j((double) (m + 1), x));
-}
-
 // H_min: the shallowest depth the grid allows (Cavity::kineticReserve's).
 double shallowest(const CavitySpec& s) { return s.gridShellDepth_m > 0.0 ? std::min(s.gridShellDepth_m, s.shellDepth_m) : s.shellDepth_m; }
 // The depth the air has (Cavity::setSpec's).
@@ -40,38 +33,6 @@ double omegaOf(const CavityMode& mode, double R, double H, double c)
     return c * std::sqrt(a * a + b * b);
 }
 } // namespace
-
-double CavityModes::besselPrimeZero(int m, int n)
-{
-    // scan for the n-th sign change of J_m' above 0, then bisect
-    constexpr double step = 0.05;
-    double a = 0.5, fa = besselPrime(m, a);
-    int found = 0;
-    for (double b = a + step; b < 200.0; a = b, b += step)
-    {
-        const double fb = besselPrime(m, b);
-        if ((fa < 0.0) == (fb < 0.0))
-        {
-            fa = fb;
-            continue;
-        }
-        if (++found == n)
-        {
-            double lo = a, hi = b;
-            for (int i = 0; i < 60; ++i)
-            {
-                const double mid = 0.5 * (lo + hi);
-                if ((besselPrime(m, mid) < 0.0) == (fa < 0.0))
-                    lo = mid;
-                else
-                    hi = mid;
-            }
-            return 0.5 * (lo + hi);
-        }
-        fa = fb;
-    }
-    return 0.0;
-}
 
 std::vector<CavityMode> CavityModes::below(const CavitySpec& spec, double upTo_Hz, double R)
 {

@@ -37,8 +37,6 @@ public:
     // drum's cutoff: DrumConfig::cavityModesUpTo_Hz), by frequency; their face shapes (m, n, sine)
     // numbered in order of first use.
     static std::vector<CavityMode> below(const CavitySpec& spec, double upTo_Hz, double radius_m);
-    // The n-th positive zero of J_m' (n >= 1).
-    static double besselPrimeZero(int m, int n);
     // J_m(j'_mn r / R) {cos, sin}(m theta): a mode's shape on the heads' plane (the batter's face;
     // the carry head's is (-1)^p times it).
     static double faceShape(const CavityMode& mode, double radius_m, double x_m, double y_m);

@@ -1,6 +1,6 @@
 #include "CavityModesCoupling.h"
 
-#include "VectorClones.h"
+#include "CellShapes.h"
 
 #include <algorithm>
 
@@ -37,38 +37,6 @@ CavityModesCoupling::CavityModesCoupling(Membrane& batter, Membrane& carry, Cavi
 {
 }
 
-namespace
-{
-// out[b] = sum_s weight[s] shape[s][b] over the shapes (shape-major, the blocks a row).
-SNARESIM_WIDE_VECTOR_CLONES void combineShapes(int shapes, int cells, const double* __restrict weight, const double* __restrict shape,
-                                               double* __restrict out)
-{
-    std::fill(out, out + cells, 0.0);
-    for (int s = 0; s < shapes; ++s)
-    {
-        const double w = weight[s];
-        const double* row = shape + (size_t) s * (size_t) cells;
-#pragma omp simd
-        for (int c = 0; c < cells; ++c)
-            out[c] += w * row[c];
-    }
-}
-// out[s] = scale sum_b shape[s][b] v[b].
-SNARESIM_WIDE_VECTOR_CLONES void projectShapes(int shapes, int cells, const double* __restrict shape, const double* __restrict v,
-                                               double scale, double* __restrict out)
-{
-    for (int s = 0; s < shapes; ++s)
-    {
-        const double* row = shape + (size_t) s * (size_t) cells;
-        double sum = 0.0;
-#pragma omp simd reduction(+ : sum)
-        for (int c = 0; c < cells; ++c)
-            sum += row[c] * v[c];
-        out[s] = scale * sum;
-    }
-}
-} // namespace
-
 void CavityModesCoupling::applyPressures() noexcept
 {
     if (! air.active())
@@ -80,7 +48,7 @@ void CavityModesCoupling::applyPressures() noexcept
         for (int i = 0; i < air.size(); ++i) // on the carry head, Phi is (-1)^p times the face shape
             f.perShape[(size_t) air.mode(i).shape] += (fi == 1 && (air.mode(i).p & 1) ? -f.sign : f.sign) * air.pressure(i);
         combineShapes(air.shapes(), (int) f.pressure.size(), f.perShape.data(), f.shape.data(), f.pressure.data());
-        f.head->setBlockPressure(f.cells.side, f.pressure.data());
+        f.head->addBlockPressure(f.cells.side, f.pressure.data());
     }
 }
 

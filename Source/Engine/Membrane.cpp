@@ -354,6 +354,8 @@ void Membrane::computeFree(double p0, double px, double py)
     const bool tilt = px != 0.0 || py != 0.0;
     const bool field = fieldSet;
     fieldSet = false; // a block pressure acts on one step
+    if (field)
+        expandBlockPressure();
     if (single)
     {
         // rows 1 .. n-2, whole: every neighbour read stays inside the padded grid
@@ -440,23 +442,38 @@ SNARESIM_WIDE_VECTOR_CLONES void copyRows(Real* band, int n, int rows)
 
 void Membrane::prepareBlocks(int side)
 {
-    const int n = g.width();
+    const int n = g.width(), blocks = (n + side - 1) / side;
+    if (side == blockSide)
+        return;
     blockSide = side;
     columnBlock.resize((size_t) n);
     for (int ix = 0; ix < n; ++ix)
         columnBlock[(size_t) ix] = ix / side;
+    blockPressure.assign((size_t) (blocks * blocks), 0.0);
     if (single)
         fField.assign((size_t) g.numNodes(), 0.0f);
     else
         dField.assign((size_t) g.numNodes(), 0.0);
 }
 
-void Membrane::setBlockPressure(int side, const double* perBlock)
+void Membrane::addBlockPressure(int side, const double* perBlock)
 {
     if (side != blockSide)
         return; // prepareBlocks(side) first: no allocation here
-    const int n = g.width(), blocks = (n + side - 1) / side;
+    const size_t count = blockPressure.size();
+    if (fieldSet)
+        for (size_t b = 0; b < count; ++b)
+            blockPressure[b] += perBlock[b];
+    else
+        std::copy(perBlock, perBlock + count, blockPressure.begin());
+    fieldSet = true;
+}
+
+void Membrane::expandBlockPressure()
+{
+    const int n = g.width(), side = blockSide, blocks = (n + side - 1) / side;
     const double gain = forceGain();
+    const double* perBlock = blockPressure.data();
     for (int by = 0; by < blocks; ++by)
     {
         const int first = by * side, rows = std::min(n, first + side) - first;
@@ -472,7 +489,6 @@ void Membrane::setBlockPressure(int side, const double* perBlock)
             copyRows(dField.data() + o, n, rows);
         }
     }
-    fieldSet = true;
 }
 
 void Membrane::applyForce(const GridDistribution& d, double force)

@@ -37,7 +37,7 @@ public:
     void setCoefficients(double tension_N_per_m, double sigma0_per_s, double sigma1_m2_per_s);
 
     // w^{n+1} from w^n, w^{n-1} with no contact force (eq. 22), with a uniform pressure p
-    // (Pa, pushing up) from the cavity acting at time n (and setBlockPressure's, if set).
+    // (Pa, pushing up) from the cavity acting at time n (and addBlockPressure's, if any).
     void computeFree(double pressure_Pa = 0.0);
     // The same with a pressure p0 + px x + py y (Pa; px, py in Pa/m, x and y from the head's
     // centre): the cavity's and the outside air's (OutsideAirCoupling.h).
@@ -54,10 +54,11 @@ public:
     void blockAccelerationsIn(int side, int ix0, int iy0, int columns, int rows, double* out) const;
     // A pressure (Pa, pushing up) uniform over each block of side x side nodes (as blockSumsNext's
     // blocks; perBlock[by * blocks + bx]) for the next computeFree only, at every interior node
-    // (eq. 22's pressure term, node by node): the cavity's modes (CavityModesCoupling).
-    // prepareBlocks(side) first (it allocates; setBlockPressure does not).
+    // (eq. 22's pressure term, node by node): the cavity's modes and the near field
+    // (CavityModesCoupling, NearFieldCoupling); the pressures added before a computeFree sum.
+    // prepareBlocks(side) first (it allocates; addBlockPressure does not); one side per head.
     void prepareBlocks(int side);
-    void setBlockPressure(int side, const double* perBlock);
+    void addBlockPressure(int side, const double* perBlock);
     // Add an external force f (N, positive up) spread by g to w^{n+1}: w += k^2/(rho q) g f,
     // times the node's response (below).
     void applyForce(const GridDistribution& d, double force_N);
@@ -138,6 +139,7 @@ private:
         return single ? f(fNext, fNow, fPrev) : f(wNext, wNow, wPrev);
     }
     double sample(const GridDistribution& d, int level) const;
+    void expandBlockPressure(); // blockPressure into the push per node
     template <class Real>
     double energyOf(const Real* wNext, const Real* wNow) const;
     template <class Real>
@@ -161,11 +163,12 @@ private:
     std::vector<double> dX, dY;             // double precision: the same
     mutable std::vector<double> dRowScratch; // a band of rows summed, for blockSumsNext
     mutable std::vector<double> accScratch;  // a row, for blockAccelerationsIn
-    int blockSide = 0;                       // prepareBlocks: the side of setBlockPressure's blocks
+    int blockSide = 0;                       // prepareBlocks: the side of addBlockPressure's blocks
+    std::vector<double> blockPressure;       // the pressures added since the last computeFree, per block
     std::vector<int> columnBlock;            // and each column's block
-    std::vector<double> dField;              // setBlockPressure's push per node (double state)
+    std::vector<double> dField;              // the blocks' push per node (double state)
     std::vector<float> fField;               // (float state)
-    bool fieldSet = false;                   // for the next computeFree
+    bool fieldSet = false;                   // a block pressure for the next computeFree
 };
 
 } // namespace snaresim

@@ -1,6 +1,7 @@
 // The enclosed air's own modes (CavityModes.h): the rigid cylinder's frequencies from the zeros
 // of J_m', the lossless whole drum with them, and their coupling's symmetry.
 
+#include "Bessel.h"
 #include "TestDrums.h"
 
 #include <catch2/catch.hpp>
@@ -21,15 +22,21 @@ DrumConfig withModes(DrumConfig c, double upTo_Hz)
 }
 } // namespace
 
-TEST_CASE("cavity modes: the zeros of J_m' are the tabulated ones", "[cavitymodes]")
+TEST_CASE("Bessel: the zeros of J_m and J_m' are the tabulated ones", "[cavitymodes][nearfield]")
 {
-    // Abramowitz and Stegun, table 9.5 (j'_{m,n}, the zero at 0 of J_0' not counted)
-    CHECK(CavityModes::besselPrimeZero(1, 1) == Approx(1.84118).epsilon(1e-5));
-    CHECK(CavityModes::besselPrimeZero(2, 1) == Approx(3.05424).epsilon(1e-5));
-    CHECK(CavityModes::besselPrimeZero(0, 1) == Approx(3.83171).epsilon(1e-5));
-    CHECK(CavityModes::besselPrimeZero(3, 1) == Approx(4.20119).epsilon(1e-5));
-    CHECK(CavityModes::besselPrimeZero(1, 2) == Approx(5.33144).epsilon(1e-5));
-    CHECK(CavityModes::besselPrimeZero(0, 2) == Approx(7.01559).epsilon(1e-5));
+    // Abramowitz and Stegun, table 9.5 (j_{m,n}; j'_{m,n}, the zero at 0 of J_0' not counted)
+    CHECK(besselZero(0, 1) == Approx(2.40483).epsilon(1e-5));
+    CHECK(besselZero(1, 1) == Approx(3.83171).epsilon(1e-5));
+    CHECK(besselZero(2, 1) == Approx(5.13562).epsilon(1e-5));
+    CHECK(besselZero(0, 2) == Approx(5.52008).epsilon(1e-5));
+    CHECK(besselZero(3, 1) == Approx(6.38016).epsilon(1e-5));
+    CHECK(besselZero(2, 2) == Approx(8.41724).epsilon(1e-5));
+    CHECK(besselPrimeZero(1, 1) == Approx(1.84118).epsilon(1e-5));
+    CHECK(besselPrimeZero(2, 1) == Approx(3.05424).epsilon(1e-5));
+    CHECK(besselPrimeZero(0, 1) == Approx(3.83171).epsilon(1e-5));
+    CHECK(besselPrimeZero(3, 1) == Approx(4.20119).epsilon(1e-5));
+    CHECK(besselPrimeZero(1, 2) == Approx(5.33144).epsilon(1e-5));
+    CHECK(besselPrimeZero(0, 2) == Approx(7.01559).epsilon(1e-5));
 }
 
 TEST_CASE("cavity modes: the default drum's, by frequency", "[cavitymodes]")
@@ -79,7 +86,7 @@ TEST_CASE("cavity modes: the lossless whole drum with them conserves energy to r
 TEST_CASE("cavity modes: with single-precision heads the lossless drum holds its energy to float round-off", "[cavitymodes][energy][precision]")
 {
     // The product's heads: the modes' pressures go into the float free update node by node
-    // (Membrane::setBlockPressure). Bound as for the heads alone (HeadPrecisionTests.cpp):
+    // (Membrane::addBlockPressure). Bound as for the heads alone (HeadPrecisionTests.cpp):
     // 2^-24 sqrt(n) for n steps.
     DrumConfig cfg = withModes(test::wholeDrum(), 2500.0);
     cfg.batter.precision = cfg.carry.precision = HeadPrecision::single_precision;
