@@ -39,4 +39,37 @@ inline double energy(double K, double M, double qNext, double qNow, double zNext
 
 inline double loss(double k, double Y, double port) { return k * Y * port * port; }
 
+// The lossless channel (Y = 0) with a damper D across the compliance (NearFieldAir.h), on
+// s = z - q by its backward difference, known before the step: F^n = D (s^n - s^{n-1}) / k pushes
+// the heads (P^n = -K (q^n - z^n) + F^n) and holds the mass back (M dt v = p^n - F^n). The heads'
+// work minus the loss k D (dt. s)^2 is then the change of energy() - (D k / 4) (dt+ s)^2
+// (dampedEnergy), since (dt- s)(dt. s) = (dt. s)^2 - (k / 4) dt-[(dt+ s)^2]. That is at least
+// (K/2)(mu q - mu z)^2 - (3K/4)(q^{n+1} - q^n)^2 for D <= K k / 4 ((dz - dq)^2 <= 2 (dz + dq)^2
+// + 8 dq^2, and energy()'s (K/8)(dz + dq)^2 covers the first).
+inline Step dampedStep(double k, double K, double M, double D, double qPrev, double qNow, double zPrev, double zNow, double vPrev)
+{
+    const double F = D * ((zNow - qNow) - (zPrev - qPrev)) / k;
+    const double bk = 0.5 * k * k / M * K;
+    Step s;
+    s.zNext = (zPrev * (1.0 - bk) + 2.0 * k * vPrev - k * k / M * F + 2.0 * bk * qNow) / (1.0 + bk);
+    s.port = K * (qNow - 0.5 * (s.zNext + zPrev));
+    s.vNext = vPrev + k / M * (s.port - F);
+    s.onHeads = -K * (qNow - zNow) + F;
+    return s;
+}
+
+// energy() - (D k / 4) (dt+ s)^2 at n+1/2.
+inline double dampedEnergy(double k, double K, double M, double D, double qNext, double qNow, double zNext, double zNow, double vNext)
+{
+    const double ds = (zNext - qNext) - (zNow - qNow);
+    return energy(K, M, qNext, qNow, zNext, zNow, vNext) - 0.25 * D / k * ds * ds;
+}
+
+// k D (dt. s)^2: what the damper took over the step from n-1/2 to n+1/2.
+inline double damperLoss(double k, double D, double qNext, double qPrev, double zNext, double zPrev)
+{
+    const double ds = (zNext - qNext) - (zPrev - qPrev);
+    return 0.25 * D / k * ds * ds;
+}
+
 } // namespace snaresim::airport

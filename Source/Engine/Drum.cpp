@@ -69,6 +69,7 @@ auto Drum::energyTerms() const
                         EnergyTerm("cavity", air),                                 // (K/2) dV^{n+1} dV^n
                         EnergyTerm("cavity_modes", modes).listedIf(modes.active()), // CavityModes.h
                         EnergyTerm("outside", outside).listedIf(outside.active()), // OutsideAir.h
+                        EnergyTerm("near_field", nearField).listedIf(nearField.active()), // NearFieldAir.h
                         EnergyTerm("airbox", box).listedIf(box.active()) };        // eq. (36)
 }
 
@@ -79,7 +80,9 @@ Drum::Drum(const DrumConfig& config)
       mallets(makeMallets(cfg, batterHead, k)), malletCoupling(batterHead, mallets), airCoupling(batterHead, carryHead, air),
       outside(cfg.cavity.model == AirModel::airbox ? OutsideAirSpec {} : cfg.outside, cfg.batter, cfg.carry, k),
       outsideCoupling(batterHead, carryHead, outside), modes(cfg.cavity, cfg.cavityModesUpTo_Hz(), cfg.batter.radius_m, k),
-      modesCoupling(batterHead, carryHead, modes, cfg.cavity.modeCellSize_m), listeners(cfg, batterHead, carryHead),
+      modesCoupling(batterHead, carryHead, modes, cfg.cavity.modeCellSize_m), nearField(cfg, k),
+      nearFieldCoupling(batterHead, carryHead, nearField, cfg.cavity.modeCellSize_m, cfg.outside.nearFieldCellSize_m),
+      listeners(cfg, batterHead, carryHead),
       engaged(cfg.snares.engaged)
 {
     if (cfg.cavity.model == AirModel::airbox)
@@ -171,6 +174,7 @@ void Drum::applyLive(const DrumConfig& next) noexcept
     snareCoupling.setLaw(n.snares.stiffness, n.snares.exponent);
     air.setSpec(n.cavity, n.batter.radius_m);
     modes.setSpec(n.cavity);
+    nearField.setSpec(n);
     for (auto& m : mallets)
         m.setSpec(n.mallet); // a mallet in flight keeps its position; its patch changes at the next strike
     auto moved = [](const AirPoint& a, const AirPoint& b) { return a.x_m != b.x_m || a.y_m != b.y_m || a.z_m != b.z_m; };
@@ -270,6 +274,11 @@ template <class Lap>
     {
         modes.computeFree();
         modesCoupling.applyPressures(); // the cavity's modes at n, on the heads' cells
+    }
+    if (nearField.active())
+    {
+        nearField.computeFree();
+        nearFieldCoupling.applyPressures(); // the near field at n, on the heads' cells
     }
     if (outside.active())
     {
@@ -409,6 +418,9 @@ double Drum::stepWith(Lap& lap)
         modesCoupling.step(); // the modes' q^{n+1}
     if (outside.active())
         outsideCoupling.step(); // q^{n+1}
+    if (nearField.active())
+        nearFieldCoupling.step({ modesCoupling.blockSums(0, nearFieldCoupling.cellSide(0)),
+                                 modesCoupling.blockSums(1, nearFieldCoupling.cellSide(1)) }); // q^{n+1}
     lap(box.active() ? StepPhase::signals : StepPhase::cavity); // the air box path counts it with the signals
 
     // 3. Energy at n + 1/2 and the microphones, then every time level moves on.
@@ -418,7 +430,12 @@ double Drum::stepWith(Lap& lap)
         lap(StepPhase::energy);
     }
 
-    listeners.listen(batterHead, carryHead, { modesCoupling.blockSums(0, listeners.cellSide(0)), modesCoupling.blockSums(1, listeners.cellSide(1)) });
+    // the cells' sums of this step, where a coupling has taken them already
+    auto sumsOf = [&](int head) {
+        const double* s = modesCoupling.blockSums(head, listeners.cellSide(head));
+        return s ? s : nearFieldCoupling.blockSums(head, listeners.cellSide(head));
+    };
+    listeners.listen(batterHead, carryHead, { sumsOf(0), sumsOf(1) });
     const bool boxMics = box.active() && cfg.air.numMics == 0; // the box's microphones are the drum's
     signals.top_Pa = boxMics ? box.micPressure(0) : listeners.pressure(PressureMicrophones::top);
     signals.bottom_Pa = boxMics ? box.micPressure(1) : listeners.pressure(PressureMicrophones::bottom);
@@ -441,6 +458,8 @@ double Drum::stepWith(Lap& lap)
         modes.advance();
     if (outside.active())
         outside.advance();
+    if (nearField.active())
+        nearField.advance();
     if (box.active())
         box.advance();
     for (auto& ml : mallets)
@@ -493,6 +512,7 @@ void Drum::reset()
     air.clear();
     modes.clear();
     outside.clear();
+    nearField.clear();
     box.clear();
     for (auto& m : mallets)
         m.park();

@@ -18,6 +18,8 @@
 #include "Mallet.h"
 #include "MalletContact.h"
 #include "Membrane.h"
+#include "NearFieldAir.h"
+#include "NearFieldCoupling.h"
 #include "OutsideAir.h"
 #include "OutsideAirCoupling.h"
 #include "PressureMicrophones.h"
@@ -129,6 +131,7 @@ public:
     const Cavity& cavity() const { return air; }
     const OutsideAir& outsideAir() const { return outside; }
     const CavityModes& cavityModes() const { return modes; }
+    const NearFieldAir& nearFieldAir() const { return nearField; }
     // The air box (AirModel::airbox): active() false otherwise.
     const DrumAir& airBox() const { return box; }
     const PressureMicrophones& microphones() const { return listeners; }
@@ -171,6 +174,8 @@ private:
     OutsideAirCoupling outsideCoupling; // coupling: heads - outside air
     CavityModes modes;           // component: the enclosed air's own modes; inactive without
     CavityModesCoupling modesCoupling; // coupling: heads - cavity modes
+    NearFieldAir nearField;      // component: the near field's mass on the heads' higher modes; inactive without
+    NearFieldCoupling nearFieldCoupling; // coupling: heads - near field
     DrumAir box;                 // component (air box) with its couplings to the heads; inactive without
     std::vector<double> wiresSaved; // air box: the wires' free u^{n+1}, for the joint solve's trials
     std::array<double, MalletContact::maxMallets> malletsSaved {};

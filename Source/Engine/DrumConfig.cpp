@@ -3,6 +3,7 @@
 #include "Cavity.h"
 #include "CavityModes.h"
 #include "Membrane.h"
+#include "NearFieldAir.h"
 #include "OutsideAir.h"
 #include "SnareWires.h"
 
@@ -116,6 +117,14 @@ void DrumConfig::validate() const
             outside.cornerLimit_Hz);
     require(std::isfinite(outside.reserve) && outside.reserve > 0.0 && outside.reserve <= 0.2, "the outside air's reserve must be within 0..0.2",
             outside.reserve);
+    require(std::isfinite(outside.nearFieldUpTo_per_m) && outside.nearFieldUpTo_per_m >= 0.0 && outside.nearFieldUpTo_per_m <= 300.0,
+            "the near field's largest wavenumber must be within 0..300 rad/m", outside.nearFieldUpTo_per_m);
+    require(std::isfinite(outside.nearFieldReserve) && outside.nearFieldReserve > 0.0 && outside.nearFieldReserve <= 0.2,
+            "the near field's reserve must be within 0..0.2", outside.nearFieldReserve);
+    require(std::isfinite(outside.nearFieldDamping) && outside.nearFieldDamping >= 0.0 && outside.nearFieldDamping <= 1.0,
+            "the near field's damping must be within 0..1", outside.nearFieldDamping);
+    require(std::isfinite(outside.nearFieldCellSize_m) && outside.nearFieldCellSize_m > 0.0 && outside.nearFieldCellSize_m <= 0.1,
+            "the near field's cells must be within 0..0.1 m", outside.nearFieldCellSize_m);
     for (const bool ofBatter : { true, false })
     {
         const MembraneSpec* m = ofBatter ? &batter : &carry;
@@ -250,6 +259,7 @@ DrumConfig DrumConfig::lossless() const
     c.air.sigma_m = 0.0;
     for (RadiationChannelSpec* ch : { &c.outside.monopole, &c.outside.dipole, &c.outside.tiltSum, &c.outside.tiltDiff })
         ch->resistance = std::numeric_limits<double>::infinity();
+    c.outside.nearFieldDamping = 0.0;
     return c;
 }
 
@@ -260,7 +270,8 @@ double DrumConfig::kineticReserve(bool ofBatter) const
     // the two bounds add (the cavity's already doubled for margin, OutsideAir.h's)
     const double air = cavity.model == AirModel::airbox ? 0.0 : OutsideAir::kineticReserve(outside, batter, carry, k, ofBatter);
     return Cavity::kineticReserve(cavity, head.radius_m, head.density_kg_per_m2, k)
-         + CavityModes::kineticReserve(cavity, cavityModesUpTo_Hz(), head.radius_m, head.density_kg_per_m2, k) + air;
+         + CavityModes::kineticReserve(cavity, cavityModesUpTo_Hz(), head.radius_m, head.density_kg_per_m2, k) + air
+         + NearFieldAir::kineticReserve(*this, ofBatter);
 }
 
 double DrumConfig::cavityModesUpTo_Hz() const

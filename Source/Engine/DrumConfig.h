@@ -114,6 +114,14 @@ struct OutsideAirSpec
     RadiationChannelSpec tiltDiff { 130.2, 4.488e7 };  // X_b - X_c: against each other
     double cornerLimit_Hz = 3000.0;        // the compliance 1/K behind each channel: sqrt(K/M) at most this
     double reserve = 0.05;                 // and at most this share of the lighter head's kinetic energy
+    // The near field's mass on the heads' modes above (0,1) and (1,1) (NearFieldAir.h): those of
+    // wavenumber j_mn / R up to this (rad/m; 0: none; 75: four 2 cm cells a wavelength), on at
+    // most this share of each head's kinetic energy, with this share of the largest damper the
+    // explicit coupling allows across each channel's compliance (0: lossless).
+    double nearFieldUpTo_per_m = 60.0;
+    double nearFieldReserve = 0.08;
+    double nearFieldDamping = 1.0;
+    double nearFieldCellSize_m = 0.04;     // its shapes' cells: whole groups of the microphones' cells
 };
 
 // A point in the air, metres from the drum's centre (z up, the batter at z = +H/2).
@@ -189,7 +197,7 @@ struct DrumConfig
     double cavityModesUpTo_Hz() const;
 
     // All losses off (sigma0 = sigma1 = 0, the air box's walls reflecting and sigma_a = 0,
-    // the outside air's resistances open):
+    // the outside air's resistances open, the near field's dampers off):
     // the energy is then conserved to round-off.
     DrumConfig lossless() const;
 

@@ -81,7 +81,7 @@ constexpr std::array<ParameterSpec, kNumParameters> kSpecs {{
       "The batter's state and update (eq. 22) in double precision, or in single: the batter a quarter to a third cheaper, the energy identity held to float round-off (BENCHMARKS.md); the carry head, which the snares strike, and the air box's heads always run in double",
       K, "double|single", "model" },
     { P::outsideAir, "outside_air", "Outside air", "", 0.0, 1.0, 0.0, S::linear, N::newModel,
-      "The air outside the drum with the cavity: its mass lowers the heads' lowest modes and it carries their sound away (radiation channels calibrated against the air box; the air box has its own)",
+      "The air around the heads with the cavity: its mass lowers the heads' lowest modes and it carries their sound away (radiation channels calibrated against the air box), and the air sloshing beside them weighs on their higher modes (the near field); the air box has its own",
       B, "off|on", "heads" },
     { P::micTopHeight, "mic_top_height", "Top mic height", "m", 0.01, 0.3, 0.04, S::linear, N::coefficients,
       "Height of the top microphone above the batter head", C, "", "output" },

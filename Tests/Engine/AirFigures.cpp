@@ -14,10 +14,12 @@
 //   airbox_figures modes-model Mm Rm Md Rd Ms Rs Mt Rt ANTI_NEAR [MODES_UP_TO_HZ]
 //       The same for the cavity with outside air of the given channels (the calibration's
 //       inner loop, scripts/calibrate_outside_air.py), and the cavity's modes up to a frequency.
-//   airbox_figures whole-drum [STIFFNESS MASS_KG]
+//   airbox_figures whole-drum [STIFFNESS MASS_KG] [same-grids] [coarser=F] [no-near-field]
 //       The whole real-time drum (cavity and outside air) against the 1.3 m air box at the three
 //       microphones, octave bands of 300 ms (the microphones' test's drum and strike), with the
-//       mallet's stiffness and mass given (default: the test's).
+//       mallet's stiffness and mass given (default: the test's); same-grids puts the box's heads
+//       on the real-time drum's grids, coarser=F widens the real-time grids by F, no-near-field
+//       leaves the near field out.
 //   airbox_figures s52
 //       The paper's section 5.2 in the cavity and in the box, and the variations that test
 //       what moves the wires' timing: when they are lowest and when they are back on the head.
@@ -415,17 +417,39 @@ int s52()
 int wholeDrum(char** v, int count)
 {
     DrumConfig cfg = test::micDrum();
-    if (count >= 2)
+    double coarser = 1.0;
+    bool sameGrids = false, nearField = true;
+    int numbers = 0;
+    for (int i = 0; i < count; ++i)
     {
-        cfg.mallet.stiffness = std::atof(v[0]);
-        cfg.mallet.mass_kg = std::atof(v[1]);
+        const std::string a = v[i];
+        if (a == "same-grids")
+            sameGrids = true;
+        else if (a == "no-near-field")
+            nearField = false;
+        else if (a.rfind("coarser=", 0) == 0)
+            coarser = std::atof(a.c_str() + 8);
+        else if (numbers++ == 0)
+            cfg.mallet.stiffness = std::atof(a.c_str());
+        else
+            cfg.mallet.mass_kg = std::atof(a.c_str());
     }
     DrumConfig realTime = cfg;
     realTime.outside.enabled = true;
+    if (! nearField)
+        realTime.outside.nearFieldUpTo_per_m = 0.0;
+    realTime.batter.gridCoarseness *= coarser;
+    realTime.carry.gridCoarseness *= coarser;
+    DrumConfig box = test::inBox(cfg);
+    if (sameGrids) // the box's heads on the real-time drum's grids (its reserves widen them)
+        for (const bool batter : { true, false })
+            (batter ? box.batter : box.carry).gridCoarseness *=
+                coarser * std::sqrt((1.0 - box.kineticReserve(batter)) / (1.0 - realTime.kineticReserve(batter)));
     const int samples = (int) std::lround(0.3 * cfg.sampleRate_Hz);
-    const test::Recording box = test::record(test::inBox(cfg), samples), rt = test::record(realTime, samples);
-    std::printf("mallet %.3g N/m^alpha, %.3g kg; bands 125 Hz - 4 kHz\n", cfg.mallet.stiffness, cfg.mallet.mass_kg);
-    test::worstDifference("the real-time drum (cavity and outside air)", rt.drum, box.drum, cfg.sampleRate_Hz);
+    const test::Recording inBox = test::record(box, samples), rt = test::record(realTime, samples);
+    std::printf("mallet %.3g N/m^alpha, %.3g kg; real-time grids x%.3g%s%s; bands 125 Hz - 4 kHz\n", cfg.mallet.stiffness, cfg.mallet.mass_kg,
+                coarser, sameGrids ? ", the box's heads on the same grids" : "", nearField ? "" : ", no near field");
+    test::worstDifference("the real-time drum (cavity and outside air)", rt.drum, inBox.drum, cfg.sampleRate_Hz);
     return 0;
 }
 } // namespace
@@ -445,6 +469,6 @@ int main(int argc, char** argv)
         return wholeDrum(argv + 2, argc - 2);
     if (what == "band" && argc >= 3)
         return band(argv[2], argc > 3 ? std::atof(argv[3]) : 1.0, argc > 4 ? std::atof(argv[4]) : 0.6);
-    std::fprintf(stderr, "usage: airbox_figures band OUT_DIR [SECONDS] [BOX_SIDE_M] | pairs | modes [BOX_SIDE_M] [STEPS] | modes-model Mm Rm Md Rd Ms Rs Mt Rt ANTI_NEAR [MODES_UP_TO_HZ] | whole-drum [STIFFNESS MASS_KG] | s52\n");
+    std::fprintf(stderr, "usage: airbox_figures band OUT_DIR [SECONDS] [BOX_SIDE_M] | pairs | modes [BOX_SIDE_M] [STEPS] | modes-model Mm Rm Md Rd Ms Rs Mt Rt ANTI_NEAR [MODES_UP_TO_HZ] | whole-drum [STIFFNESS MASS_KG] [same-grids] [coarser=F] [no-near-field] | s52\n");
     return 2;
 }

@@ -2,6 +2,7 @@
 // heads' contacts solved jointly with their air, passivity with losses, the heads' (0,1) pair
 // through the air, the paper's section 5.2 in the box, and the config's checks.
 
+#include "BatterModes.h"
 #include "ModePairs.h"
 #include "Section52.h"
 #include "SpectrumPeaks.h"
@@ -292,60 +293,7 @@ TEST_CASE("air box configs that cannot work throw std::invalid_argument with a r
     CHECK(l.air.sigma_m == 0.0);
 }
 
-namespace
-{
-// The batter's (m,n) vacuum mode shape J_m(j_mn r / R) cos(m theta) on its grid, and its
-// coordinate (the shape's sum over the head) per step after a strike at (0.5 R, 0).
-struct BatterMode
-{
-    int m;
-    double j; // j_mn, the n-th zero of J_m (Abramowitz and Stegun, table 9.5)
-    const char* name;
-};
-
-std::vector<std::vector<double>> batterModeCoordinates(const DrumConfig& cfg, const std::vector<BatterMode>& modes, int steps)
-{
-    Drum drum(cfg);
-    drum.strike(2.0, 0.5, 0.0);
-    const CircularGrid& g = drum.batter().grid();
-    const int nodes = g.width() * g.width();
-    std::vector<std::vector<double>> shapes, out(modes.size());
-    for (const BatterMode& mode : modes)
-    {
-        std::vector<double> s((size_t) nodes, 0.0);
-        for (int iy = 0; iy < g.width(); ++iy)
-            for (int ix = 0; ix < g.width(); ++ix)
-            {
-                const double x = g.x(ix), y = g.x(iy), r = std::hypot(x, y);
-                if (r < g.radius())
-                    s[(size_t) g.index(ix, iy)] = std::cyl_bessel_j(mode.m, mode.j * r / g.radius()) * std::cos(mode.m * std::atan2(y, x));
-            }
-        shapes.push_back(std::move(s));
-    }
-    for (int n = 0; n < steps; ++n)
-    {
-        drum.step();
-        for (size_t q = 0; q < modes.size(); ++q)
-        {
-            double sum = 0.0;
-            for (int i = 0; i < nodes; ++i)
-                sum += shapes[q][(size_t) i] * drum.batter().nowAt(i);
-            out[q].push_back(sum);
-        }
-    }
-    return out;
-}
-
-// The strongest peak of x within 15 % below to 5 % above f.
-double peakNear(const std::vector<double>& x, double sampleRate_Hz, double f)
-{
-    const size_t pad = 8;
-    const auto found = test::peaks(test::hannSpectrum(x, pad), sampleRate_Hz / (double) (pad * x.size()), 0.85 * f, 1.05 * f);
-    return found.empty() ? 0.0 : found.front().frequency;
-}
-} // namespace
-
-TEST_CASE("the air box's air loads the batter's higher modes with the near field's mass, rho_a / k on each side", "[drum][airbox][modes]")
+TEST_CASE("the air box's air loads the batter's higher modes with the near field's mass, rho_a / k on each side", "[drum][airbox][modes][nearfield]")
 {
     // A head mode of wavenumber k = j_mn / R moves far slower than sound, so the air it pushes
     // only sloshes beside it: a field falling as exp(-k |z|) whose pressure is rho_a / k times
@@ -353,11 +301,14 @@ TEST_CASE("the air box's air loads the batter's higher modes with the near field
     // far end: 1.0006 for the lowest mode here). With that mass per area on both sides the mode
     // falls to f_vacuum / sqrt(1 + rho_a (1 + coth(k H)) / (k rho)), rho the head's mass per area.
     // The plane-wave estimate ignores the rim (the air wraps round it), so it holds to a few
-    // per cent, while the head in vacuum lies 7-11 % above it. The reduced cavity and the outside
-    // air's channels load only the volume and first moments, so in real time these modes keep
-    // their vacuum frequencies (printed; docs/MODEL.md, "The air's mass on the higher modes").
-    const std::vector<BatterMode> modes { { 2, 5.13562, "(2,1)" }, { 3, 6.38016, "(3,1)" }, { 1, 7.01559, "(1,2)" },
-                                          { 4, 7.58834, "(4,1)" }, { 2, 8.41724, "(2,2)" } };
+    // per cent for m >= 2, while the head in vacuum lies 7-11 % above it; for m = 0 and 1 the
+    // cavity's and the radiation's loading of the modes' volume and moment come in too.
+    // The real-time drum's near field (NearFieldAir.h, with the outside air) gives the same
+    // modes within 3 % of the box's (m = 0: 5 %, docs/MODEL.md); without it they keep their
+    // vacuum frequencies.
+    const std::vector<test::BatterMode> modes { { 2, 5.13562, "(2,1)" }, { 3, 6.38016, "(3,1)" }, { 1, 7.01559, "(1,2)" },
+                                          { 4, 7.58834, "(4,1)" }, { 2, 8.41724, "(2,2)" }, { 0, 5.52008, "(0,2)" },
+                                          { 0, 8.65373, "(0,3)" }, { 1, 10.17347, "(1,3)" } };
     DrumConfig cfg = test::wholeDrum();
     cfg.snares.engaged = false;
     DrumConfig vacuum = cfg;
@@ -368,10 +319,13 @@ TEST_CASE("the air box's air loads the batter's higher modes with the near field
     box.air.threads = 2;
     DrumConfig realTime = cfg;
     realTime.outside.enabled = true;
+    DrumConfig channelsOnly = realTime;
+    channelsOnly.outside.nearFieldUpTo_per_m = 0.0;
     const int steps = 1 << 14;
-    const auto inVacuum = batterModeCoordinates(vacuum, modes, steps);
-    const auto inBox = batterModeCoordinates(box, modes, steps);
-    const auto inRealTime = batterModeCoordinates(realTime, modes, steps);
+    const auto inVacuum = test::batterModeCoordinates(vacuum, modes, steps);
+    const auto inBox = test::batterModeCoordinates(box, modes, steps);
+    const auto inRealTime = test::batterModeCoordinates(realTime, modes, steps);
+    const auto withoutNearField = test::batterModeCoordinates(channelsOnly, modes, steps);
 
     const double R = cfg.batter.radius_m, H = cfg.cavity.shellDepth_m, rho = cfg.batter.density_kg_per_m2;
     const double rhoA = cfg.cavity.airDensity_kg_per_m3, fs = cfg.sampleRate_Hz;
@@ -379,15 +333,22 @@ TEST_CASE("the air box's air loads the batter's higher modes with the near field
     {
         const double k = modes[q].j / R;
         // the head's own mode on its grid, near the continuum's j_mn sqrt(T / rho) / (2 pi R)
-        const double fVacuum = peakNear(inVacuum[q], fs, 1.03 * modes[q].j * std::sqrt(cfg.batter.tension_N_per_m / rho) / (2.0 * std::numbers::pi * R));
+        const double fVacuum = test::peakNear(inVacuum[q], fs, 1.03 * modes[q].j * std::sqrt(cfg.batter.tension_N_per_m / rho) / (2.0 * std::numbers::pi * R));
         const double predicted = fVacuum / std::sqrt(1.0 + rhoA * (1.0 + 1.0 / std::tanh(k * H)) / (k * rho));
-        const double fBox = peakNear(inBox[q], fs, fVacuum);
-        const double fRealTime = peakNear(inRealTime[q], fs, fVacuum);
-        std::printf("batter %s: vacuum %.1f Hz, rho_a / k loading %.1f Hz, air box %.1f Hz (%+.1f %%), real time (cavity and outside "
-                    "air) %.1f Hz\n",
-                    modes[q].name, fVacuum, predicted, fBox, 100.0 * (fBox / predicted - 1.0), fRealTime);
-        CHECK(std::abs(fBox / predicted - 1.0) < 0.03);
-        // the check can fail: the unloaded head is far from it
-        CHECK(fVacuum > 1.05 * predicted);
+        const double fBox = test::peakNear(inBox[q], fs, fVacuum);
+        const double fRealTime = test::peakNear(inRealTime[q], fs, fVacuum);
+        const double fChannels = test::peakNear(withoutNearField[q], fs, fVacuum);
+        std::printf("batter %s: vacuum %.1f Hz, rho_a / k loading %.1f Hz, air box %.1f Hz (%+.1f %%); real time %.1f Hz (%+.1f %% "
+                    "from the box), without the near field %.1f Hz (%+.1f %%)\n",
+                    modes[q].name, fVacuum, predicted, fBox, 100.0 * (fBox / predicted - 1.0), fRealTime, 100.0 * (fRealTime / fBox - 1.0),
+                    fChannels, 100.0 * (fChannels / fBox - 1.0));
+        CHECK(std::abs(fRealTime / fBox - 1.0) < (modes[q].m == 0 ? 0.05 : 0.03));
+        if (modes[q].m >= 2)
+        {
+            CHECK(std::abs(fBox / predicted - 1.0) < 0.03);
+            // the checks can fail: the unloaded head, and the real-time drum without the near field, are far from it
+            CHECK(fVacuum > 1.05 * predicted);
+            CHECK(fChannels > 1.05 * fBox);
+        }
     }
 }

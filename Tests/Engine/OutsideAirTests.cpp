@@ -44,13 +44,19 @@ TEST_CASE("outside air: the lossless whole drum with it conserves energy to roun
 
 TEST_CASE("outside air: with its resistances the energy never rises and energy + losses is constant", "[outside][energy]")
 {
-    // lossless heads and wires: only the radiation removes energy
+    // lossless heads and wires: only the radiation (and the near field's dampers) remove energy.
+    // A soft stick that strikes once: the test drum's stiff one chatters on the batter's grid
+    // (22 contacts in 7 ms), and the share it sends into the radiating (0,1) modes moves with the
+    // grid (6.3 % radiated in 0.45 s; 4.0 % with a grid 2 % coarser and the same air), the single
+    // contact's by a tenth as much (22 % and 19.5 %).
     DrumConfig cfg = withOutsideAir(test::wholeDrum());
     const DrumConfig lossless = cfg.lossless();
     cfg.batter = lossless.batter;
     cfg.carry = lossless.carry;
     cfg.snares = lossless.snares;
     cfg.snares.scheme = CollisionScheme::newton;
+    cfg.mallet.stiffness = 1.0e6;
+    cfg.mallet.mass_kg = 0.012;
     Drum drum(cfg);
     drum.setEnergyTracking(true);
     drum.strike(5.0, 0.3, 0.1);
@@ -68,7 +74,7 @@ TEST_CASE("outside air: with its resistances the energy never rises and energy +
                          << " of the strike's energy");
     CHECK(worstRise <= 1e-15);
     CHECK(worstBalance < 1e-11);
-    CHECK(drum.energy().dissipated_J > 0.05 * e0); // the drum radiates a real share in 0.45 s
+    CHECK(drum.energy().dissipated_J > 0.1 * e0); // the drum radiates a real share in 0.45 s
 }
 
 TEST_CASE("outside air: the drum's lowest modes match the air box's within 2 % in frequency and 25 % in decay", "[outside][airbox]")
