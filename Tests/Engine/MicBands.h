@@ -110,9 +110,9 @@ inline DrumConfig inBox(DrumConfig cfg)
 
 inline const char* const kNames[3] = { "top", "bottom", "room" };
 
-// Largest |level difference| over the bands, each band printed.
+// Largest |level difference| over the bands up to upTo_Hz (all by default), each band printed.
 inline double worstDifference(const char* what, const std::array<std::vector<double>, 3>& a, const std::array<std::vector<double>, 3>& b,
-                       double fs)
+                              double fs, double upTo_Hz = kOctaves.back())
 {
     double worst = 0.0;
     for (int m = 0; m < 3; ++m)
@@ -122,7 +122,8 @@ inline double worstDifference(const char* what, const std::array<std::vector<dou
         for (size_t i = 0; i < la.size(); ++i)
         {
             std::printf(" %+.1f", la[i] - lb[i]);
-            worst = std::max(worst, std::abs(la[i] - lb[i]));
+            if (kOctaves[i] <= upTo_Hz)
+                worst = std::max(worst, std::abs(la[i] - lb[i]));
         }
         std::printf("\n");
     }

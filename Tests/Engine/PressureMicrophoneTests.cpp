@@ -7,7 +7,7 @@
 using namespace snaresim;
 using namespace snaresim::test;
 
-TEST_CASE("pressure microphones: octave bands 125 Hz - 4 kHz within 3 dB of the air box's pressure", "[mics][airbox]")
+TEST_CASE("pressure microphones: octave bands 125 Hz - 4 kHz within 3 dB of the air box's pressure; the whole real-time drum to 500 Hz", "[mics][airbox]")
 {
     // The same heads' motion heard two ways: the air box's own pressure at the microphones and
     // the radiation model on the box's heads. The box's heads stand in for the real-time ones
@@ -35,12 +35,18 @@ TEST_CASE("pressure microphones: octave bands 125 Hz - 4 kHz within 3 dB of the 
             std::sqrt((1.0 - sameGrids.kineticReserve(batter)) / (1.0 - realTime.kineticReserve(batter)));
     const Recording boxOnGrids = record(sameGrids, samples);
     const Recording rt = record(realTime, samples);
-    worstDifference("the real-time drum (cavity, outside air, near field), the box on its grids", rt.drum, boxOnGrids.drum, fs);
+    // Within 3 dB up to 500 Hz (above, the box's inside air carries sound the reduced cavity
+    // does not: docs/MODEL.md, "The real-time drum as a whole")
+    CHECK(worstDifference("the real-time drum (cavity, outside air, near field), the box on its grids", rt.drum, boxOnGrids.drum, fs, 500.0)
+          < 3.0);
     DrumConfig channelsOnly = realTime; // on the same grids too
     channelsOnly.outside.nearFieldUpTo_per_m = 0.0;
     for (const bool batter : { true, false })
         (batter ? channelsOnly.batter : channelsOnly.carry).gridCoarseness *=
             std::sqrt((1.0 - channelsOnly.kineticReserve(batter)) / (1.0 - realTime.kineticReserve(batter)));
     const Recording rtChannels = record(channelsOnly, samples);
+    // (without the near field the batter's (2,1) mode stands 14 % high, out of the 500 Hz band;
+    // how far that band then lies from the box's depends on the strike's chatter: 4.1 dB at the
+    // room mic on these grids, 4.5 dB on the channels' own)
     worstDifference("the real-time drum without the near field, the box on its grids", rtChannels.drum, boxOnGrids.drum, fs);
 }
