@@ -7,8 +7,39 @@
 // is implicit in z alone. Its energy at n+1/2 (portEnergy) changes over a step by exactly the
 // heads' work on q minus k Y p^2 (portLoss).
 
+#include <algorithm>
+#include <utility>
+#include <vector>
+
 namespace snaresim::airport
 {
+
+// The time levels of a set of channels (the heads' coordinates q, the ports z, the velocities
+// v^{n-1/2} and v^{n+1/2}) and the pressures P^n on the heads: sized once, moved on after a step,
+// cleared. Each step writes the next levels whole before they are read again.
+struct Levels
+{
+    std::vector<double> qPrev, qNow, qNext, zPrev, zNow, zNext, vPrev, vNext, P;
+
+    void assign(size_t n)
+    {
+        for (auto* v : { &qPrev, &qNow, &qNext, &zPrev, &zNow, &zNext, &vPrev, &vNext, &P })
+            v->assign(n, 0.0);
+    }
+    void advance()
+    {
+        std::swap(qPrev, qNow);
+        std::swap(qNow, qNext);
+        std::swap(zPrev, zNow);
+        std::swap(zNow, zNext);
+        std::swap(vPrev, vNext);
+    }
+    void clear()
+    {
+        for (auto* v : { &qPrev, &qNow, &qNext, &zPrev, &zNow, &zNext, &vPrev, &vNext, &P })
+            std::fill(v->begin(), v->end(), 0.0);
+    }
+};
 
 struct Step
 {

@@ -120,8 +120,9 @@ CavityModes::CavityModes(const CavitySpec& spec, double upTo_Hz, double R, doubl
 {
     for (const CavityMode& mode : modes)
         numShapes = std::max(numShapes, mode.shape + 1);
-    for (auto* v : { &K, &M, &qNow, &qNext, &zPrev, &zNow, &zNext, &vPrev, &vNext, &P })
-        v->assign(modes.size(), 0.0);
+    K.assign(modes.size(), 0.0);
+    M.assign(modes.size(), 0.0);
+    at.assign(modes.size());
     for (const CavityMode& mode : modes)
         faceArea.push_back(faceNorm(mode, R));
     radius = R;
@@ -147,10 +148,10 @@ void CavityModes::computeFree()
 {
     for (size_t i = 0; i < modes.size(); ++i)
     {
-        const airport::Step s = airport::step(k, K[i], M[i], 0.0, qNow[i], zPrev[i], zNow[i], vPrev[i]);
-        zNext[i] = s.zNext;
-        vNext[i] = s.vNext;
-        P[i] = s.onHeads;
+        const airport::Step s = airport::step(k, K[i], M[i], 0.0, at.qNow[i], at.zPrev[i], at.zNow[i], at.vPrev[i]);
+        at.zNext[i] = s.zNext;
+        at.vNext[i] = s.vNext;
+        at.P[i] = s.onHeads;
     }
 }
 
@@ -158,22 +159,12 @@ double CavityModes::energy() const
 {
     double e = 0.0;
     for (size_t i = 0; i < modes.size(); ++i)
-        e += airport::energy(K[i], M[i], qNext[i], qNow[i], zNext[i], zNow[i], vNext[i]);
+        e += airport::energy(K[i], M[i], at.qNext[i], at.qNow[i], at.zNext[i], at.zNow[i], at.vNext[i]);
     return e;
 }
 
-void CavityModes::advance()
-{
-    std::swap(qNow, qNext); // qNext and zNext are written whole before they are read again
-    std::swap(zPrev, zNow);
-    std::swap(zNow, zNext);
-    std::swap(vPrev, vNext);
-}
+void CavityModes::advance() { at.advance(); }
 
-void CavityModes::clear()
-{
-    for (auto* v : { &qNow, &qNext, &zPrev, &zNow, &zNext, &vPrev, &vNext, &P })
-        std::fill(v->begin(), v->end(), 0.0);
-}
+void CavityModes::clear() { at.clear(); }
 
 } // namespace snaresim

@@ -13,6 +13,7 @@
 // expansion of eq. 5 with the heads' accelerations as its boundary source). Below its
 // frequency a mode is the air's inertia (sloshing across the drum); above, its stiffness.
 
+#include "AirPort.h"
 #include "DrumConfig.h"
 
 #include <vector>
@@ -55,9 +56,9 @@ public:
 
     // Step n's port updates and the pressures P^n on the modes (Pa per unit of Phi).
     void computeFree();
-    double pressure(int i) const { return P[(size_t) i]; }
+    double pressure(int i) const { return at.P[(size_t) i]; }
     // q^{n+1}, from the heads (CavityModesCoupling).
-    double* coordinatesNext() { return qNext.data(); }
+    double* coordinatesNext() { return at.qNext.data(); }
 
     double energy() const;                  // at n + 1/2
     double stepLoss() const { return 0.0; } // lossless
@@ -71,7 +72,7 @@ private:
     double radius = 0.0, depth = 0.0, speed = 0.0;
     std::vector<double> faceArea; // int Phi^2 dA over a face, per mode (the radius is the grid's)
     std::vector<double> K, M;
-    std::vector<double> qNow, qNext, zPrev, zNow, zNext, vPrev, vNext, P;
+    airport::Levels at; // the modes' time levels and pressures
 };
 
 } // namespace snaresim

@@ -97,11 +97,9 @@ NearFieldAir::NearFieldAir(const DrumConfig& c, double timeStep)
       inside(c.cavity.model == AirModel::cavity && c.cavityModesUpTo_Hz() <= 0.0)
 {
     const size_t n = list.size();
-    for (auto* v : { &mu, &K, &M, &D, &qPrev, &qNow, &qNext, &zPrev, &zNow, &zNext, &vPrev, &vNext, &P })
+    for (auto* v : { &mu, &omega, &K, &M, &D, &cellArea, &headArea })
         v->assign(n, 0.0);
-    cellArea.assign(n, 0.0);
-    headArea.assign(n, 0.0);
-    omega.assign(n, 0.0);
+    at.assign(n);
     setSpec(c);
 }
 
@@ -152,10 +150,10 @@ void NearFieldAir::computeFree()
 {
     for (size_t i = 0; i < list.size(); ++i)
     {
-        const airport::Step s = airport::dampedStep(k, K[i], M[i], D[i], qPrev[i], qNow[i], zPrev[i], zNow[i], vPrev[i]);
-        zNext[i] = s.zNext;
-        vNext[i] = s.vNext;
-        P[i] = s.onHeads;
+        const airport::Step s = airport::dampedStep(k, K[i], M[i], D[i], at.qPrev[i], at.qNow[i], at.zPrev[i], at.zNow[i], at.vPrev[i]);
+        at.zNext[i] = s.zNext;
+        at.vNext[i] = s.vNext;
+        at.P[i] = s.onHeads;
     }
 }
 
@@ -163,7 +161,7 @@ double NearFieldAir::energy() const
 {
     double e = 0.0;
     for (size_t i = 0; i < list.size(); ++i)
-        e += airport::dampedEnergy(k, K[i], M[i], D[i], qNext[i], qNow[i], zNext[i], zNow[i], vNext[i]);
+        e += airport::dampedEnergy(k, K[i], M[i], D[i], at.qNext[i], at.qNow[i], at.zNext[i], at.zNow[i], at.vNext[i]);
     return e;
 }
 
@@ -171,23 +169,12 @@ double NearFieldAir::stepLoss() const
 {
     double loss = 0.0;
     for (size_t i = 0; i < list.size(); ++i)
-        loss += airport::damperLoss(k, D[i], qNext[i], qPrev[i], zNext[i], zPrev[i]);
+        loss += airport::damperLoss(k, D[i], at.qNext[i], at.qPrev[i], at.zNext[i], at.zPrev[i]);
     return loss;
 }
 
-void NearFieldAir::advance()
-{
-    std::swap(qPrev, qNow);
-    std::swap(qNow, qNext); // qNext and zNext are written whole before they are read again
-    std::swap(zPrev, zNow);
-    std::swap(zNow, zNext);
-    std::swap(vPrev, vNext);
-}
+void NearFieldAir::advance() { at.advance(); }
 
-void NearFieldAir::clear()
-{
-    for (auto* v : { &qPrev, &qNow, &qNext, &zPrev, &zNow, &zNext, &vPrev, &vNext, &P })
-        std::fill(v->begin(), v->end(), 0.0);
-}
+void NearFieldAir::clear() { at.clear(); }
 
 } // namespace snaresim

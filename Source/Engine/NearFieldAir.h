@@ -32,6 +32,7 @@
 // for margin (the cells make them nearly, not exactly, orthogonal). omega_c is the largest that
 // keeps that within OutsideAirSpec::nearFieldReserve.
 
+#include "AirPort.h"
 #include "DrumConfig.h"
 
 #include <array>
@@ -87,10 +88,10 @@ public:
 
     // Step n's port updates and the pressures P^n (Pa per unit of the shape).
     void computeFree();
-    double pressure(int i) const { return P[(size_t) i]; }
-    const double* pressures() const { return P.data(); }
+    double pressure(int i) const { return at.P[(size_t) i]; }
+    const double* pressures() const { return at.P.data(); }
     // q^{n+1}, from the heads (NearFieldCoupling).
-    double* coordinatesNext() { return qNext.data(); }
+    double* coordinatesNext() { return at.qNext.data(); }
 
     double energy() const;   // at n + 1/2
     double stepLoss() const; // the dampers' k D (dt. s)^2 over the step
@@ -109,7 +110,7 @@ private:
     double airDensity = 0.0, depth = 0.0;
     std::vector<double> mu, omega, cellArea, headArea; // per shape
     std::vector<double> K, M, D;
-    std::vector<double> qPrev, qNow, qNext, zPrev, zNow, zNext, vPrev, vNext, P;
+    airport::Levels at; // the channels' time levels and pressures
 };
 
 } // namespace snaresim

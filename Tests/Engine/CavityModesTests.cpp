@@ -7,7 +7,6 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
-#include <cfloat>
 #include <cmath>
 #include <numbers>
 
@@ -93,9 +92,7 @@ TEST_CASE("cavity modes: with single-precision heads the lossless drum holds its
     Drum drum(cfg.lossless());
     drum.setEnergyTracking(true);
     drum.strike(5.0, 0.3, 0.1);
-    const int steps = 20000;
-    const double drift = test::balanceDrift(drum, steps);
-    const double bound = FLT_EPSILON / 2.0 * std::sqrt((double) steps);
+    const double drift = test::balanceDrift(drum, 20000), bound = test::floatDriftBound(20000);
     INFO("relative energy variation " << drift << " (bound " << bound << ")");
     CHECK(drift < bound);
 }

@@ -75,6 +75,33 @@ inline double balanceDrift(Drum& drum, int steps)
     return balanceDrift(drum, steps, [] {});
 }
 
+// A float state's energy identity over n steps: each step rounds w at every node by up to 2^-24
+// of it, a random walk of relative changes of that order: 2^-24 sqrt(n).
+inline double floatDriftBound(int steps) { return 0x1p-24 * std::sqrt((double) steps); }
+
+// Over `steps` steps of a tracked drum with losses: the largest rise of its energy from one step
+// to the next and the largest change of its balance (energy + losses), both against its total
+// energy before them.
+struct Passivity
+{
+    double worstRise = 0.0, worstBalance = 0.0;
+};
+inline Passivity passivity(Drum& drum, int steps)
+{
+    const double e0 = drum.energy().total(), b0 = drum.energy().balance();
+    double previous = e0;
+    Passivity p;
+    for (int n = 0; n < steps; ++n)
+    {
+        drum.step();
+        const double e = drum.energy().total();
+        p.worstRise = std::max(p.worstRise, (e - previous) / e0);
+        p.worstBalance = std::max(p.worstBalance, std::abs(drum.energy().balance() - b0) / e0);
+        previous = e;
+    }
+    return p;
+}
+
 } // namespace snaresim::test
 
 namespace snaresim::test
