@@ -87,12 +87,7 @@ TEST_CASE("cavity modes: with single-precision heads the lossless drum holds its
     // The product's heads: the modes' pressures go into the float free update node by node
     // (Membrane::addBlockPressure). Bound as for the heads alone (HeadPrecisionTests.cpp):
     // 2^-24 sqrt(n) for n steps.
-    DrumConfig cfg = withModes(test::wholeDrum(), 2500.0);
-    cfg.batter.precision = cfg.carry.precision = HeadPrecision::single_precision;
-    Drum drum(cfg.lossless());
-    drum.setEnergyTracking(true);
-    drum.strike(5.0, 0.3, 0.1);
-    const double drift = test::balanceDrift(drum, 20000), bound = test::floatDriftBound(20000);
+    const double drift = test::singlePrecisionDrift(withModes(test::wholeDrum(), 2500.0), 20000), bound = test::floatDriftBound(20000);
     INFO("relative energy variation " << drift << " (bound " << bound << ")");
     CHECK(drift < bound);
 }

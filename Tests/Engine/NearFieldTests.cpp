@@ -109,12 +109,7 @@ TEST_CASE("near field: the lossless whole drum with it conserves energy to round
 TEST_CASE("near field: with single-precision heads the lossless drum holds its energy to float round-off", "[nearfield][energy][precision]")
 {
     // the product's heads; bound as for the heads alone (HeadPrecisionTests.cpp): 2^-24 sqrt(n)
-    DrumConfig cfg = withNearField(test::wholeDrum());
-    cfg.batter.precision = cfg.carry.precision = HeadPrecision::single_precision;
-    Drum drum(cfg.lossless());
-    drum.setEnergyTracking(true);
-    drum.strike(5.0, 0.3, 0.1);
-    const double drift = test::balanceDrift(drum, 20000), bound = test::floatDriftBound(20000);
+    const double drift = test::singlePrecisionDrift(withNearField(test::wholeDrum()), 20000), bound = test::floatDriftBound(20000);
     INFO("relative energy variation " << drift << " (bound " << bound << ")");
     CHECK(drift < bound);
 }
