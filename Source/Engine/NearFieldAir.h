@@ -88,7 +88,6 @@ public:
 
     // Step n's port updates and the pressures P^n (Pa per unit of the shape).
     void computeFree();
-    double pressure(int i) const { return at.P[(size_t) i]; }
     const double* pressures() const { return at.P.data(); }
     // q^{n+1}, from the heads (NearFieldCoupling).
     double* coordinatesNext() { return at.qNext.data(); }

@@ -440,11 +440,7 @@ int wholeDrum(char** v, int count)
         realTime.outside.nearFieldUpTo_per_m = 0.0;
     realTime.batter.gridCoarseness *= coarser;
     realTime.carry.gridCoarseness *= coarser;
-    DrumConfig box = test::inBox(cfg);
-    if (sameGrids) // the box's heads on the real-time drum's grids (its reserves widen them)
-        for (const bool batter : { true, false })
-            (batter ? box.batter : box.carry).gridCoarseness *=
-                coarser * std::sqrt((1.0 - box.kineticReserve(batter)) / (1.0 - realTime.kineticReserve(batter)));
+    const DrumConfig box = sameGrids ? test::onGridsOf(test::inBox(cfg), realTime) : test::inBox(cfg);
     const int samples = (int) std::lround(0.3 * cfg.sampleRate_Hz);
     const test::Recording inBox = test::record(box, samples), rt = test::record(realTime, samples);
     std::printf("mallet %.3g N/m^alpha, %.3g kg; real-time grids x%.3g%s%s; bands 125 Hz - 4 kHz\n", cfg.mallet.stiffness, cfg.mallet.mass_kg,

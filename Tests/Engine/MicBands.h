@@ -3,6 +3,7 @@
 // as the radiation model gives them on the drum's own heads, and octave-band levels of the first
 // 300 ms: shared by the microphones' test (PressureMicrophoneTests.cpp) and airbox_figures.
 #include "Drum.h"
+#include "Membrane.h"
 #include "TestDrums.h"
 
 #include <unsupported/Eigen/FFT>
@@ -96,6 +97,21 @@ inline DrumConfig micDrum()
     cfg.snares.engaged = false;
     const double H = cfg.cavity.shellDepth_m, d = 0.35;
     cfg.mics.room = { d * std::sqrt(0.5), 0.0, 0.5 * H + d * std::sqrt(0.5) };
+    return cfg;
+}
+
+// cfg with its heads on the grids of `reference`'s (the same spacing): the air's kinetic reserves
+// widen a drum's grids, and a chattering stick hears the difference.
+inline DrumConfig onGridsOf(DrumConfig cfg, const DrumConfig& reference)
+{
+    const DrumConfig before = cfg;
+    for (const bool batter : { true, false })
+    {
+        MembraneSpec& head = batter ? cfg.batter : cfg.carry;
+        head.gridCoarseness *= Membrane::gridSpacing(batter ? reference.batter : reference.carry, 1.0 / reference.sampleRate_Hz,
+                                                     reference.kineticReserve(batter))
+                             / Membrane::gridSpacing(head, 1.0 / before.sampleRate_Hz, before.kineticReserve(batter));
+    }
     return cfg;
 }
 

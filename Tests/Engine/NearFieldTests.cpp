@@ -48,6 +48,31 @@ TEST_CASE("near field: the shapes, every (m, n) up to the cutoff but the channel
     CHECK(NearFieldAir::kineticReserve(DrumConfig {}, true) == 0.0);
 }
 
+TEST_CASE("near field: each channel puts rho_a (1 + coth kH) / k on its mode, its corner above the mode", "[nearfield]")
+{
+    for (const double rate : { 44100.0, 48000.0, 96000.0 })
+    {
+        DrumConfig cfg = withNearField(DrumConfig {});
+        cfg.sampleRate_Hz = rate;
+        const Drum drum(cfg);
+        const NearFieldAir& air = drum.nearFieldAir();
+        REQUIRE(air.size() == 40);
+        for (int i = 0; i < air.size(); ++i)
+        {
+            const NearFieldShape& s = air.shape(i);
+            const MembraneSpec& head = s.head == 0 ? cfg.batter : cfg.carry;
+            const double k = s.zero / head.radius_m, rhoA = cfg.cavity.airDensity_kg_per_m3;
+            const double mu = rhoA * (1.0 + 1.0 / std::tanh(k * cfg.cavity.shellDepth_m)) / k;
+            CHECK(air.arealMass(i) == Approx(mu).epsilon(1e-12));
+            const double loaded = k * std::sqrt(head.tension_N_per_m / head.density_kg_per_m2) / std::sqrt(1.0 + mu / head.density_kg_per_m2);
+            CHECK(air.modeFrequency_Hz(i) == Approx(loaded / (2.0 * M_PI)).epsilon(1e-12));
+            // a mass at its mode: the compliance's corner well above it (docs/MODEL.md: 1.7-6.5 times)
+            INFO("(" << s.m << "," << s.n << ") on head " << s.head << " at " << rate << " Hz");
+            CHECK(air.corner_Hz(i) > 1.5 * air.modeFrequency_Hz(i));
+        }
+    }
+}
+
 TEST_CASE("near field: the (0,n) and (1,n) shapes leave the channels' coordinates and the lowest modes alone", "[nearfield]")
 {
     // On a fine grid: each shape's sum, first moment and overlap with (0,1) / (1,1), against its

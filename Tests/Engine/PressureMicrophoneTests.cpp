@@ -29,22 +29,15 @@ TEST_CASE("pressure microphones: octave bands 125 Hz - 4 kHz within 3 dB of the 
     // to 5 dB: airbox_figures whole-drum coarser=1.02 no-near-field).
     DrumConfig realTime = cfg;
     realTime.outside.enabled = true;
-    DrumConfig sameGrids = inBox(cfg);
-    for (const bool batter : { true, false })
-        (batter ? sameGrids.batter : sameGrids.carry).gridCoarseness *=
-            std::sqrt((1.0 - sameGrids.kineticReserve(batter)) / (1.0 - realTime.kineticReserve(batter)));
-    const Recording boxOnGrids = record(sameGrids, samples);
+    const Recording boxOnGrids = record(onGridsOf(inBox(cfg), realTime), samples);
     const Recording rt = record(realTime, samples);
     // Within 3 dB up to 500 Hz (above, the box's inside air carries sound the reduced cavity
     // does not: docs/MODEL.md, "The real-time drum as a whole")
     CHECK(worstDifference("the real-time drum (cavity, outside air, near field), the box on its grids", rt.drum, boxOnGrids.drum, fs, 500.0)
           < 3.0);
-    DrumConfig channelsOnly = realTime; // on the same grids too
+    DrumConfig channelsOnly = realTime;
     channelsOnly.outside.nearFieldUpTo_per_m = 0.0;
-    for (const bool batter : { true, false })
-        (batter ? channelsOnly.batter : channelsOnly.carry).gridCoarseness *=
-            std::sqrt((1.0 - channelsOnly.kineticReserve(batter)) / (1.0 - realTime.kineticReserve(batter)));
-    const Recording rtChannels = record(channelsOnly, samples);
+    const Recording rtChannels = record(onGridsOf(channelsOnly, realTime), samples); // on the same grids too
     // (without the near field the batter's (2,1) mode stands 14 % high, out of the 500 Hz band;
     // how far that band then lies from the box's depends on the strike's chatter: 4.1 dB at the
     // room mic on these grids, 4.5 dB on the channels' own)
