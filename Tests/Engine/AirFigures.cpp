@@ -14,23 +14,30 @@
 //   airbox_figures modes-model Mm Rm Md Rd Ms Rs Mt Rt ANTI_NEAR [MODES_UP_TO_HZ]
 //       The same for the cavity with outside air of the given channels (the calibration's
 //       inner loop, scripts/calibrate_outside_air.py), and the cavity's modes up to a frequency.
-//   airbox_figures whole-drum [STIFFNESS MASS_KG] [same-grids] [coarser=F] [no-near-field]
+//   airbox_figures whole-drum [STIFFNESS MASS_KG] [same-grids] [coarser=F] [no-near-field] [modes=HZ]
 //       The whole real-time drum (cavity and outside air) against the 1.3 m air box at the three
 //       microphones, octave bands of 300 ms (the microphones' test's drum and strike), with the
 //       mallet's stiffness and mass given (default: the test's); same-grids puts the box's heads
 //       on the real-time drum's grids, coarser=F widens the real-time grids by F, no-near-field
-//       leaves the near field out.
+//       leaves the near field out, modes=HZ adds the cavity's modes up to HZ. Then the heads'
+//       motion under the microphones (rho_a c v), the same way.
+//   airbox_figures head-modes [the options of whole-drum]
+//       The same two drums mode by mode: each head's displacement on its vacuum modes' shapes
+//       (j_mn < 12.5), the peak near each mode's vacuum frequency and its level in four windows.
 //   airbox_figures s52
 //       The paper's section 5.2 in the cavity and in the box, and the variations that test
 //       what moves the wires' timing: when they are lowest and when they are back on the head.
 
 #include "AirBandRun.h"
+#include "Bessel.h"
 #include "LowModes.h"
 #include "MicBands.h"
 #include "ModePairs.h"
 #include "Pluck01.h"
 #include "Section52.h"
+#include "SpectrumPeaks.h"
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -414,38 +421,142 @@ int s52()
     }
     return 0;
 }
-int wholeDrum(char** v, int count)
+// The real-time drum (cavity and outside air) and the 1.3 m air box, as whole-drum and head-modes
+// take them from their options.
+struct TwoDrums
+{
+    DrumConfig realTime, box;
+    double coarser = 1.0;
+    bool sameGrids = false;
+};
+
+TwoDrums twoDrums(char** v, int count)
 {
     DrumConfig cfg = test::micDrum();
-    double coarser = 1.0;
-    bool sameGrids = false, nearField = true;
+    TwoDrums d;
+    bool nearField = true;
+    double modesUpTo_Hz = 0.0;
     int numbers = 0;
     for (int i = 0; i < count; ++i)
     {
         const std::string a = v[i];
         if (a == "same-grids")
-            sameGrids = true;
+            d.sameGrids = true;
         else if (a == "no-near-field")
             nearField = false;
         else if (a.rfind("coarser=", 0) == 0)
-            coarser = std::atof(a.c_str() + 8);
+            d.coarser = std::atof(a.c_str() + 8);
+        else if (a.rfind("modes=", 0) == 0)
+            modesUpTo_Hz = std::atof(a.c_str() + 6);
         else if (numbers++ == 0)
             cfg.mallet.stiffness = std::atof(a.c_str());
         else
             cfg.mallet.mass_kg = std::atof(a.c_str());
     }
-    DrumConfig realTime = cfg;
-    realTime.outside.enabled = true;
+    d.realTime = cfg;
+    d.realTime.outside.enabled = true;
     if (! nearField)
-        realTime.outside.nearFieldUpTo_per_m = 0.0;
-    realTime.batter.gridCoarseness *= coarser;
-    realTime.carry.gridCoarseness *= coarser;
-    const DrumConfig box = sameGrids ? test::onGridsOf(test::inBox(cfg), realTime) : test::inBox(cfg);
-    const int samples = (int) std::lround(0.3 * cfg.sampleRate_Hz);
-    const test::Recording inBox = test::record(box, samples), rt = test::record(realTime, samples);
-    std::printf("mallet %.3g N/m^alpha, %.3g kg; real-time grids x%.3g%s%s; bands 125 Hz - 4 kHz\n", cfg.mallet.stiffness, cfg.mallet.mass_kg,
-                coarser, sameGrids ? ", the box's heads on the same grids" : "", nearField ? "" : ", no near field");
-    test::worstDifference("the real-time drum (cavity and outside air)", rt.drum, inBox.drum, cfg.sampleRate_Hz);
+        d.realTime.outside.nearFieldUpTo_per_m = 0.0;
+    d.realTime.cavity.modesUpTo_Hz = modesUpTo_Hz;
+    d.realTime.batter.gridCoarseness *= d.coarser;
+    d.realTime.carry.gridCoarseness *= d.coarser;
+    d.box = d.sameGrids ? test::onGridsOf(test::inBox(cfg), d.realTime) : test::inBox(cfg);
+    std::printf("mallet %.3g N/m^alpha, %.3g kg; real-time grids x%.3g%s%s, cavity modes %s\n", cfg.mallet.stiffness, cfg.mallet.mass_kg,
+                d.coarser, d.sameGrids ? ", the box's heads on the same grids" : "", nearField ? "" : ", no near field",
+                modesUpTo_Hz > 0.0 ? ("to " + std::to_string((int) modesUpTo_Hz) + " Hz").c_str() : "none");
+    return d;
+}
+
+int wholeDrum(char** v, int count)
+{
+    const TwoDrums d = twoDrums(v, count);
+    const double fs = d.box.sampleRate_Hz;
+    const int samples = (int) std::lround(0.3 * fs);
+    const test::Recording inBox = test::record(d.box, samples), rt = test::record(d.realTime, samples);
+    std::printf("octave bands 125 Hz - 4 kHz, 300 ms\n");
+    test::worstDifference("the real-time drum (cavity and outside air)", rt.drum, inBox.drum, fs);
+    test::worstDifference("its heads' motion under the microphones (rho_a c v)", rt.plane, inBox.plane, fs);
+    return 0;
+}
+
+// Each head's displacement projected on its vacuum modes' shapes J_m(j_mn r / R) cos(m theta)
+// (j_mn < 12.5) after the microphones' strike, in both drums: the mode's strongest peak from 30 %
+// below to 5 % above its vacuum frequency and its level (RMS of the coordinate, dB) over four windows.
+int headModes(char** v, int count)
+{
+    const TwoDrums d = twoDrums(v, count);
+    struct Shape
+    {
+        bool carry;
+        int m, n;
+        double j;
+    };
+    std::vector<Shape> shapes;
+    for (const bool carry : { false, true })
+        for (int m = 0; m <= 7; ++m)
+            for (int n = 1; besselZero(m, n) < 12.5; ++n)
+                shapes.push_back({ carry, m, n, besselZero(m, n) });
+    const double fs = d.box.sampleRate_Hz;
+    const int steps = (int) std::lround(0.3 * fs);
+    std::array<std::vector<std::vector<double>>, 2> coordinates;
+    for (const int which : { 0, 1 })
+    {
+        Drum drum(which == 0 ? d.realTime : d.box);
+        drum.strike(3.0, 0.3, 0.0);
+        std::vector<std::vector<double>> node;
+        for (const Shape& s : shapes)
+        {
+            const CircularGrid& g = s.carry ? drum.carry().grid() : drum.batter().grid();
+            std::vector<double> w((size_t) (g.width() * g.width()), 0.0);
+            for (int iy = 0; iy < g.width(); ++iy)
+                for (int ix = 0; ix < g.width(); ++ix)
+                {
+                    const double x = g.x(ix), y = g.x(iy), r = std::hypot(x, y);
+                    if (r < g.radius())
+                        w[(size_t) g.index(ix, iy)] = std::cyl_bessel_j(s.m, s.j * r / g.radius()) * std::cos(s.m * std::atan2(y, x));
+                }
+            node.push_back(std::move(w));
+        }
+        coordinates[(size_t) which].assign(shapes.size(), {});
+        for (int n = 0; n < steps; ++n)
+        {
+            drum.step();
+            for (size_t q = 0; q < shapes.size(); ++q)
+            {
+                const Membrane& head = shapes[q].carry ? drum.carry() : drum.batter();
+                double sum = 0.0;
+                for (size_t i = 0; i < node[q].size(); ++i)
+                    sum += node[q][i] * head.nowAt((int) i);
+                coordinates[(size_t) which][q].push_back(sum);
+            }
+        }
+    }
+    const double windows[][2] = { { 0.0, 0.01 }, { 0.01, 0.03 }, { 0.05, 0.1 }, { 0.2, 0.3 } };
+    std::printf("%-14s %9s | %-38s | %-38s\n", "mode", "vacuum", "real time: peak, dB 0-10/10-30/50-100/200-300 ms", "air box");
+    for (size_t q = 0; q < shapes.size(); ++q)
+    {
+        const Shape& s = shapes[q];
+        const MembraneSpec& head = s.carry ? d.box.carry : d.box.batter;
+        const double vacuum = s.j * std::sqrt(head.tension_N_per_m / head.density_kg_per_m2) / (2.0 * std::numbers::pi * head.radius_m);
+        std::printf("%-6s (%d,%d)   %7.0f Hz", s.carry ? "carry" : "batter", s.m, s.n, vacuum);
+        for (const auto& drumCoordinates : coordinates)
+        {
+            const std::vector<double>& x = drumCoordinates[q];
+            // the air lowers a mode by up to 25 % (the carry head's (1,1))
+            const auto found = test::peaks(test::hannSpectrum(x, 8), fs / (8.0 * (double) x.size()), 0.7 * vacuum, 1.05 * vacuum);
+            const double peak = found.empty() ? 0.0 : found.front().frequency;
+            std::printf(" | %6.0f Hz", peak);
+            for (const auto& w : windows)
+            {
+                double e = 1e-300;
+                const int a = (int) (w[0] * fs), b = (int) (w[1] * fs);
+                for (int i = a; i < b; ++i)
+                    e += x[(size_t) i] * x[(size_t) i];
+                std::printf(" %6.1f", 10.0 * std::log10(e / (b - a)));
+            }
+        }
+        std::printf("\n");
+    }
     return 0;
 }
 } // namespace
@@ -463,8 +574,10 @@ int main(int argc, char** argv)
         return modesModel(argv + 2);
     if (what == "whole-drum")
         return wholeDrum(argv + 2, argc - 2);
+    if (what == "head-modes")
+        return headModes(argv + 2, argc - 2);
     if (what == "band" && argc >= 3)
         return band(argv[2], argc > 3 ? std::atof(argv[3]) : 1.0, argc > 4 ? std::atof(argv[4]) : 0.6);
-    std::fprintf(stderr, "usage: airbox_figures band OUT_DIR [SECONDS] [BOX_SIDE_M] | pairs | modes [BOX_SIDE_M] [STEPS] | modes-model Mm Rm Md Rd Ms Rs Mt Rt ANTI_NEAR [MODES_UP_TO_HZ] | whole-drum [STIFFNESS MASS_KG] [same-grids] [coarser=F] [no-near-field] | s52\n");
+    std::fprintf(stderr, "usage: airbox_figures band OUT_DIR [SECONDS] [BOX_SIDE_M] | pairs | modes [BOX_SIDE_M] [STEPS] | modes-model Mm Rm Md Rd Ms Rs Mt Rt ANTI_NEAR [MODES_UP_TO_HZ] | whole-drum [STIFFNESS MASS_KG] [same-grids] [coarser=F] [no-near-field] [modes=HZ] | head-modes [the same options] | s52\n");
     return 2;
 }

@@ -5,11 +5,13 @@
 //   cmake --build build --target drumair_bench && ./build/Tests/Engine/drumair_bench
 
 #include "AirSpeed.h"
+#include "CavityModes.h"
 #include "Drum.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <string>
 #include <thread>
 
 using namespace snaresim;
@@ -43,8 +45,32 @@ Run timeDrum(const DrumConfig& cfg, double seconds, bool struck)
 }
 } // namespace
 
-int main()
+int cavityModes()
 {
+    std::printf("the default drum with the outside air, 48 kHz, 2 s after a fortissimo strike; seconds of compute per second of audio:\n");
+    for (int round = 0; round < 2; ++round)
+        for (const double upTo : { 0.0, 1000.0, 2000.0, 4000.0 })
+        {
+            DrumConfig cfg;
+            cfg.sampleRate_Hz = 48000.0;
+            cfg.outside.enabled = true;
+            cfg.cavity.modesUpTo_Hz = upTo;
+            const double s = timeDrum(cfg, 2.0, true).perAudioSecond;
+            std::printf("  cavity modes to %4.0f Hz (%3d modes): %.3f (%.2fx real time)\n", upTo, (int) CavityModes::below(cfg.cavity, upTo, cfg.batter.radius_m).size(), s,
+                        1.0 / s);
+        }
+    return 0;
+}
+
+int main(int argc, char** argv)
+{
+    if (argc > 1 && std::string(argv[1]) == "cavity-modes")
+        return cavityModes();
+    if (argc > 1)
+    {
+        std::fprintf(stderr, "usage: drumair_bench [cavity-modes]\n");
+        return 2;
+    }
     DrumConfig cfg; // the schema's default drum (20 wires, quadratised solve, Quality 2)
     cfg.sampleRate_Hz = 44100.0;
     const double seconds = 1.0;
