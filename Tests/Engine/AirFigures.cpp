@@ -29,6 +29,7 @@
 //       what moves the wires' timing: when they are lowest and when they are back on the head.
 
 #include "AirBandRun.h"
+#include "BatterModes.h"
 #include "Bessel.h"
 #include "LowModes.h"
 #include "MicBands.h"
@@ -505,18 +506,7 @@ int headModes(char** v, int count)
         drum.strike(3.0, 0.3, 0.0);
         std::vector<std::vector<double>> node;
         for (const Shape& s : shapes)
-        {
-            const CircularGrid& g = s.carry ? drum.carry().grid() : drum.batter().grid();
-            std::vector<double> w((size_t) (g.width() * g.width()), 0.0);
-            for (int iy = 0; iy < g.width(); ++iy)
-                for (int ix = 0; ix < g.width(); ++ix)
-                {
-                    const double x = g.x(ix), y = g.x(iy), r = std::hypot(x, y);
-                    if (r < g.radius())
-                        w[(size_t) g.index(ix, iy)] = std::cyl_bessel_j(s.m, s.j * r / g.radius()) * std::cos(s.m * std::atan2(y, x));
-                }
-            node.push_back(std::move(w));
-        }
+            node.push_back(test::vacuumShape(s.carry ? drum.carry().grid() : drum.batter().grid(), s.m, s.j));
         coordinates[(size_t) which].assign(shapes.size(), {});
         for (int n = 0; n < steps; ++n)
         {

@@ -19,6 +19,20 @@ struct BatterMode
     const char* name;
 };
 
+// J_m(j r / R) cos(m theta) at every node of g (zero outside the disc).
+inline std::vector<double> vacuumShape(const CircularGrid& g, int m, double j)
+{
+    std::vector<double> s((size_t) (g.width() * g.width()), 0.0);
+    for (int iy = 0; iy < g.width(); ++iy)
+        for (int ix = 0; ix < g.width(); ++ix)
+        {
+            const double x = g.x(ix), y = g.x(iy), r = std::hypot(x, y);
+            if (r < g.radius())
+                s[(size_t) g.index(ix, iy)] = std::cyl_bessel_j(m, j * r / g.radius()) * std::cos(m * std::atan2(y, x));
+        }
+    return s;
+}
+
 inline std::vector<std::vector<double>> batterModeCoordinates(const DrumConfig& cfg, const std::vector<BatterMode>& modes, int steps)
 {
     Drum drum(cfg);
@@ -27,17 +41,7 @@ inline std::vector<std::vector<double>> batterModeCoordinates(const DrumConfig& 
     const int nodes = g.width() * g.width();
     std::vector<std::vector<double>> shapes, out(modes.size());
     for (const BatterMode& mode : modes)
-    {
-        std::vector<double> s((size_t) nodes, 0.0);
-        for (int iy = 0; iy < g.width(); ++iy)
-            for (int ix = 0; ix < g.width(); ++ix)
-            {
-                const double x = g.x(ix), y = g.x(iy), r = std::hypot(x, y);
-                if (r < g.radius())
-                    s[(size_t) g.index(ix, iy)] = std::cyl_bessel_j(mode.m, mode.j * r / g.radius()) * std::cos(mode.m * std::atan2(y, x));
-            }
-        shapes.push_back(std::move(s));
-    }
+        shapes.push_back(vacuumShape(g, mode.m, mode.j));
     for (int n = 0; n < steps; ++n)
     {
         drum.step();
