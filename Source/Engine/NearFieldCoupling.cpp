@@ -11,7 +11,7 @@ namespace snaresim
 
 NearFieldCoupling::Face NearFieldCoupling::makeFace(Membrane& head, int which, double cellSize, double coarseSize)
 {
-    Face f { &head, HeadCells(head.grid(), cellSize), 0, 0, 0, {}, {}, {}, {}, {}, false };
+    Face f { &head, HeadCells(head.grid(), cellSize), 0, 0, 0, {}, {}, {}, {}, {}, {}, {}, false };
     while (f.first < air.size() && air.shape(f.first).head != which)
         ++f.first;
     while (f.first + f.count < air.size() && air.shape(f.first + f.count).head == which)
@@ -79,6 +79,16 @@ NearFieldCoupling::Face NearFieldCoupling::makeFace(Membrane& head, int which, d
         }
         air.setNorms(f.first + s, area * sumCells, area * own);
     }
+    // each coarse cell's blocks in a run: its sum without a read-modify-write per fine cell
+    f.firstBlock.assign((size_t) f.coarse + 1, 0);
+    for (int c = 0; c < cells; ++c)
+        ++f.firstBlock[(size_t) f.coarseOf[(size_t) c] + 1];
+    for (int c = 0; c < f.coarse; ++c)
+        f.firstBlock[(size_t) c + 1] += f.firstBlock[(size_t) c];
+    f.fineBlocks.assign((size_t) cells, 0);
+    std::vector<int> filled(f.firstBlock.begin(), f.firstBlock.end() - 1);
+    for (int c = 0; c < cells; ++c)
+        f.fineBlocks[(size_t) filled[(size_t) f.coarseOf[(size_t) c]]++] = f.cells.block[(size_t) c];
     f.blockSum.assign(blocks, 0.0);
     f.blockPressure.assign(blocks, 0.0);
     f.cellValue.assign((size_t) f.coarse, 0.0);
@@ -121,9 +131,13 @@ void NearFieldCoupling::step(std::array<const double*, 2> sums) noexcept
             f.ownSums = true;
             blockSum = f.blockSum.data();
         }
-        std::fill(f.cellValue.begin(), f.cellValue.end(), 0.0);
-        for (int c = 0; c < f.cells.cells(); ++c)
-            f.cellValue[(size_t) f.coarseOf[(size_t) c]] += blockSum[f.cells.block[(size_t) c]];
+        for (int c = 0; c < f.coarse; ++c)
+        {
+            double sum = 0.0;
+            for (int i = f.firstBlock[(size_t) c]; i < f.firstBlock[(size_t) c + 1]; ++i)
+                sum += blockSum[f.fineBlocks[(size_t) i]];
+            f.cellValue[(size_t) c] = sum;
+        }
         const double area = f.head->grid().spacing() * f.head->grid().spacing();
         projectShapes(f.count, f.coarse, f.shape.data(), f.cellValue.data(), area, q + f.first);
     }
