@@ -427,26 +427,24 @@ int s52()
 struct TwoDrums
 {
     DrumConfig realTime, box;
-    double coarser = 1.0;
-    bool sameGrids = false;
 };
 
 TwoDrums twoDrums(char** v, int count)
 {
     DrumConfig cfg = test::micDrum();
     TwoDrums d;
-    bool nearField = true;
-    double modesUpTo_Hz = 0.0;
+    bool nearField = true, sameGrids = false;
+    double coarser = 1.0, modesUpTo_Hz = 0.0;
     int numbers = 0;
     for (int i = 0; i < count; ++i)
     {
         const std::string a = v[i];
         if (a == "same-grids")
-            d.sameGrids = true;
+            sameGrids = true;
         else if (a == "no-near-field")
             nearField = false;
         else if (a.rfind("coarser=", 0) == 0)
-            d.coarser = std::atof(a.c_str() + 8);
+            coarser = std::atof(a.c_str() + 8);
         else if (a.rfind("modes=", 0) == 0)
             modesUpTo_Hz = std::atof(a.c_str() + 6);
         else if (numbers++ == 0)
@@ -459,11 +457,11 @@ TwoDrums twoDrums(char** v, int count)
     if (! nearField)
         d.realTime.outside.nearFieldUpTo_per_m = 0.0;
     d.realTime.cavity.modesUpTo_Hz = modesUpTo_Hz;
-    d.realTime.batter.gridCoarseness *= d.coarser;
-    d.realTime.carry.gridCoarseness *= d.coarser;
-    d.box = d.sameGrids ? test::onGridsOf(test::inBox(cfg), d.realTime) : test::inBox(cfg);
+    d.realTime.batter.gridCoarseness *= coarser;
+    d.realTime.carry.gridCoarseness *= coarser;
+    d.box = sameGrids ? test::onGridsOf(test::inBox(cfg), d.realTime) : test::inBox(cfg);
     std::printf("mallet %.3g N/m^alpha, %.3g kg; real-time grids x%.3g%s%s, cavity modes %s\n", cfg.mallet.stiffness, cfg.mallet.mass_kg,
-                d.coarser, d.sameGrids ? ", the box's heads on the same grids" : "", nearField ? "" : ", no near field",
+                coarser, sameGrids ? ", the box's heads on the same grids" : "", nearField ? "" : ", no near field",
                 modesUpTo_Hz > 0.0 ? ("to " + std::to_string((int) modesUpTo_Hz) + " Hz").c_str() : "none");
     return d;
 }
