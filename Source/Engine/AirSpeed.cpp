@@ -1,6 +1,6 @@
 #include "AirSpeed.h"
 
-#include "VectorClones.h"
+#include "VectorTarget.h"
 
 #include <algorithm>
 #include <chrono>
@@ -13,39 +13,8 @@ namespace snaresim
 
 namespace
 {
-// The bare loop: out = a0 u + a1 (6 neighbours) - up over every node of a padded nx x ny x nz grid.
-// Inlined into one function per precision, each built for the vector targets.
-template <class T>
-[[gnu::always_inline]] inline void bareLoop(T* __restrict out, const T* __restrict u, const T* __restrict up, int nx, int ny,
-                                            int nz, T a0, T a1)
-{
-    const long sx = nx + 2, sxy = sx * (ny + 2);
-    for (int iz = 1; iz <= nz; ++iz)
-        for (int iy = 1; iy <= ny; ++iy)
-        {
-            const long r = iz * sxy + iy * sx + 1;
-            const T* v = u + r;
-            const T* vp = up + r;
-            T* o = out + r;
-            for (int m = 0; m < nx; ++m)
-            {
-                const T nb = (v[m - 1] + v[m + 1]) + (v[m - sx] + v[m + sx]) + (v[m - sxy] + v[m + sxy]);
-                o[m] = a0 * v[m] + a1 * nb - vp[m];
-            }
-        }
-}
-
-SNARESIM_WIDE_VECTOR_CLONES void bareDouble(double* __restrict out, const double* __restrict u, const double* __restrict up,
-                                            int nx, int ny, int nz, double a0, double a1)
-{
-    bareLoop(out, u, up, nx, ny, nz, a0, a1);
-}
-
-SNARESIM_WIDE_VECTOR_CLONES void bareFloat(float* __restrict out, const float* __restrict u, const float* __restrict up, int nx,
-                                           int ny, int nz, float a0, float a1)
-{
-    bareLoop(out, u, up, nx, ny, nz, a0, a1);
-}
+#define SNARESIM_KERNELS "AirSpeedKernels.inl"
+#include "PerVectorTarget.inl"
 
 // Three levels of the bare stencil, rotated each step as the air box's are.
 template <class T>
@@ -63,10 +32,7 @@ struct Bare
     void step()
     {
         const T l2 = T(1.0 / 3.0);
-        if constexpr (sizeof(T) == sizeof(double))
-            bareDouble(lvl[0], lvl[1], lvl[2], nx, ny, nz, 2.0 - 6.0 * l2, l2);
-        else
-            bareFloat(lvl[0], lvl[1], lvl[2], nx, ny, nz, T(2) - T(6) * l2, l2);
+        SNARESIM_ON_VECTOR_TARGET(bareLoop<T>)(lvl[0], lvl[1], lvl[2], nx, ny, nz, T(2) - T(6) * l2, l2);
         T* t = lvl[2];
         lvl[2] = lvl[1];
         lvl[1] = lvl[0];

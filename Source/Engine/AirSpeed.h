@@ -5,7 +5,7 @@
 //
 // The bare stencil is out = a0 u + a1 (6 neighbours of u) - up over every node of arrays of the
 // box's padded size: no walls, no cut links, no sigma_a, built the same way as the air box's
-// loops (SNARESIM_WIDE_VECTOR_CLONES, no contraction). The kinds are timed in turns, round after
+// loops (once per vector target, VectorTarget.h; no contraction). The kinds are timed in turns, round after
 // round, each kind's figure its fastest round: what the machine does meanwhile (others' jobs on a
 // shared machine) lands on every kind alike and is mostly filtered out.
 

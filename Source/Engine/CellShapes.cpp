@@ -1,6 +1,6 @@
 #include "CellShapes.h"
 
-#include "VectorClones.h"
+#include "VectorTarget.h"
 
 #include <algorithm>
 
@@ -9,75 +9,28 @@ namespace snaresim
 
 namespace
 {
-template <class Real>
-SNARESIM_WIDE_VECTOR_CLONES void combine(int shapes, int cells, const double* __restrict weight, const Real* __restrict shape,
-                                               double* __restrict out)
-{
-    std::fill(out, out + cells, 0.0);
-    int s = 0;
-    for (; s + 4 <= shapes; s += 4)
-    {
-        const Real* __restrict a = shape + (size_t) s * (size_t) cells;
-        const Real* __restrict b = a + cells;
-        const Real* __restrict c = b + cells;
-        const Real* __restrict d = c + cells;
-        const double wa = weight[s], wb = weight[s + 1], wc = weight[s + 2], wd = weight[s + 3];
-#pragma omp simd
-        for (int i = 0; i < cells; ++i)
-            out[i] += (wa * (double) a[i] + wb * (double) b[i]) + (wc * (double) c[i] + wd * (double) d[i]);
-    }
-    for (; s < shapes; ++s)
-    {
-        const Real* __restrict a = shape + (size_t) s * (size_t) cells;
-        const double w = weight[s];
-#pragma omp simd
-        for (int i = 0; i < cells; ++i)
-            out[i] += w * (double) a[i];
-    }
-}
-
-template <class Real>
-SNARESIM_WIDE_VECTOR_CLONES void project(int shapes, int cells, const Real* __restrict shape, const double* __restrict v,
-                                               double scale, double* __restrict out)
-{
-    int s = 0;
-    for (; s + 4 <= shapes; s += 4)
-    {
-        const Real* __restrict a = shape + (size_t) s * (size_t) cells;
-        const Real* __restrict b = a + cells;
-        const Real* __restrict c = b + cells;
-        const Real* __restrict d = c + cells;
-        double sa = 0.0, sb = 0.0, sc = 0.0, sd = 0.0;
-#pragma omp simd reduction(+ : sa, sb, sc, sd)
-        for (int i = 0; i < cells; ++i)
-        {
-            const double x = v[i];
-            sa += (double) a[i] * x;
-            sb += (double) b[i] * x;
-            sc += (double) c[i] * x;
-            sd += (double) d[i] * x;
-        }
-        out[s] = scale * sa;
-        out[s + 1] = scale * sb;
-        out[s + 2] = scale * sc;
-        out[s + 3] = scale * sd;
-    }
-    for (; s < shapes; ++s)
-    {
-        const Real* __restrict a = shape + (size_t) s * (size_t) cells;
-        double sum = 0.0;
-#pragma omp simd reduction(+ : sum)
-        for (int i = 0; i < cells; ++i)
-            sum += (double) a[i] * v[i];
-        out[s] = scale * sum;
-    }
-}
-
+#define SNARESIM_KERNELS "CellShapesKernels.inl"
+#include "PerVectorTarget.inl"
 } // namespace
 
-void combineShapes(int shapes, int cells, const double* weight, const double* shape, double* out) { combine(shapes, cells, weight, shape, out); }
-void combineShapes(int shapes, int cells, const double* weight, const float* shape, double* out) { combine(shapes, cells, weight, shape, out); }
-void projectShapes(int shapes, int cells, const double* shape, const double* v, double scale, double* out) { project(shapes, cells, shape, v, scale, out); }
-void projectShapes(int shapes, int cells, const float* shape, const double* v, double scale, double* out) { project(shapes, cells, shape, v, scale, out); }
+void combineShapes(int shapes, int cells, const double* weight, const double* shape, double* out)
+{
+    SNARESIM_ON_VECTOR_TARGET(combine(shapes, cells, weight, shape, out));
+}
+
+void combineShapes(int shapes, int cells, const double* weight, const float* shape, double* out)
+{
+    SNARESIM_ON_VECTOR_TARGET(combine(shapes, cells, weight, shape, out));
+}
+
+void projectShapes(int shapes, int cells, const double* shape, const double* v, double scale, double* out)
+{
+    SNARESIM_ON_VECTOR_TARGET(project(shapes, cells, shape, v, scale, out));
+}
+
+void projectShapes(int shapes, int cells, const float* shape, const double* v, double scale, double* out)
+{
+    SNARESIM_ON_VECTOR_TARGET(project(shapes, cells, shape, v, scale, out));
+}
 
 } // namespace snaresim

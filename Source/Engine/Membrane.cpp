@@ -1,6 +1,6 @@
 #include "Membrane.h"
 
-#include "VectorClones.h"
+#include "VectorTarget.h"
 
 #include <algorithm>
 #include <cmath>
@@ -104,246 +104,27 @@ void Membrane::setCoefficients(double tension, double s0, double s1)
 
 namespace
 {
-// One row of eq. (22): out = c0 w + c1 (4 neighbours of w) + d0 wp + d1 (4 neighbours of wp) + push
-// (+ slope m along the row with Tilt, + field[m] with Field), for `count` nodes that all lie inside
-// the disc; returns the sum of out.
-template <bool Tilt, bool Field>
-SNARESIM_WIDE_VECTOR_CLONES double updateRow(double* __restrict out, const double* __restrict w, const double* __restrict wp,
-                                        const double* __restrict field, int n, int count, double c0, double c1, double d0,
-                                        double d1, double push, double slope)
-{
-    double sum = 0.0; // summed on the way (vector lanes)
-#pragma omp simd reduction(+ : sum)
-    for (int m = 0; m < count; ++m)
-    {
-        const double nb = w[m - 1] + w[m + 1] + w[m - n] + w[m + n];
-        const double nbp = wp[m - 1] + wp[m + 1] + wp[m - n] + wp[m + n];
-        double next;
-        if constexpr (Tilt)
-            next = c0 * w[m] + c1 * nb + d0 * wp[m] + d1 * nbp + (push + slope * (double) m);
-        else
-            next = c0 * w[m] + c1 * nb + d0 * wp[m] + d1 * nbp + push;
-        if constexpr (Field)
-            next += field[m];
-        out[m] = next;
-        sum += next;
-    }
-    return sum;
-}
-
-// Eq. (22) in single precision over the whole padded grid, row after row without a break
-// (nodes on and outside the rim are multiplied by the mask, so they stay zero): the disc's
-// short rows cost more in loop ends than the corners' extra nodes in float. Written as an
-// increment, w+ = w + r v + cl L w + cs L v with v = w - w- and L the unscaled 5-point
-// Laplacian, so that no coefficient near 2 multiplies w: a float
-// coefficient's rounding then moves the modes by parts in 1e8 of their small restoring term,
-// not of 2 w. Returns the sum of out, in double.
-// With Tilt, a pressure px x + py y is added (xs, ys: x and y times the mask); with Field, a push
-// per node (field, times the mask).
-template <bool Tilt, bool Field>
-SNARESIM_WIDE_VECTOR_CLONES double updateGridFloat(float* __restrict out, const float* __restrict w, const float* __restrict wp,
-                                                   const float* __restrict mask, const float* __restrict xs,
-                                                   const float* __restrict ys, const float* __restrict field, int n, int count,
-                                                   float r, float cl, float cs, float push, float px, float py)
-{
-    double sum = 0.0; // summed on the way, in double (vector lanes: the order is not the rows')
-#pragma omp simd reduction(+ : sum)
-    for (int m = 0; m < count; ++m)
-    {
-        const float c = w[m], v = c - wp[m];
-        const float nb = w[m - 1] + w[m + 1] + w[m - n] + w[m + n];
-        const float nbp = wp[m - 1] + wp[m + 1] + wp[m - n] + wp[m + n];
-        float p = push;
-        if constexpr (Field)
-            p += field[m];
-        float next;
-        if constexpr (Tilt)
-            next = mask[m] * (c + (r * v + cl * (nb - 4.0f * c) + cs * ((nb - nbp) - 4.0f * v) + p))
-                 + (px * xs[m] + py * ys[m]);
-        else
-            next = mask[m] * (c + (r * v + cl * (nb - 4.0f * c) + cs * ((nb - nbp) - 4.0f * v) + p));
-        out[m] = next;
-        sum += (double) next;
-    }
-    return sum;
-}
-// sum(xs w), sum(ys w) over count nodes, in double (vector lanes).
-template <class Real>
-SNARESIM_WIDE_VECTOR_CLONES void firstMoments(const Real* __restrict w, const Real* __restrict xs, const Real* __restrict ys, int count,
-                                              double& sx, double& sy)
-{
-    double ax = 0.0, ay = 0.0;
-#pragma omp simd reduction(+ : ax, ay)
-    for (int m = 0; m < count; ++m)
-    {
-        const double wm = (double) w[m];
-        ax += (double) xs[m] * wm;
-        ay += (double) ys[m] * wm;
-    }
-    sx = ax;
-    sy = ay;
-}
-// Block sums of an n x n grid, band by band: a band's Side rows summed node by node into one
-// row (the Side values held in registers, vectorised along the row; zero beyond n), then its
-// runs of Side values, a block each. In double whatever the state: the microphones take second
-// differences in time of these sums, which would lift a float sum's rounding by 1 / (omega k)^2.
-template <int Side, class Real>
-SNARESIM_WIDE_VECTOR_CLONES void sumBlocks(const Real* __restrict w, int n, double* __restrict acc, double* __restrict out)
-{
-    const int blocks = (n + Side - 1) / Side;
-    for (int by = 0; by < blocks; ++by)
-    {
-        const int first = by * Side;
-        const Real* row0 = w + (size_t) first * (size_t) n;
-        if (first + Side <= n)
-            for (int ix = 0; ix < n; ++ix)
-            {
-                double s = (double) row0[ix];
-                for (int r = 1; r < Side; ++r)
-                    s += (double) row0[(size_t) r * (size_t) n + (size_t) ix];
-                acc[ix] = s;
-            }
-        else // the last, short band
-            for (int ix = 0; ix < n; ++ix)
-            {
-                double s = 0.0;
-                for (int r = 0; r < n - first; ++r)
-                    s += (double) row0[(size_t) r * (size_t) n + (size_t) ix];
-                acc[ix] = s;
-            }
-        for (int ix = n; ix < blocks * Side; ++ix)
-            acc[ix] = 0.0;
-        double* o = out + (size_t) by * (size_t) blocks;
-        for (int bx = 0; bx < blocks; ++bx)
-        {
-            double s = acc[bx * Side];
-            for (int c = 1; c < Side; ++c)
-                s += acc[bx * Side + c];
-            o[bx] = s;
-        }
-    }
-}
-// The same for any side (fine grids: 96 kHz), the band's rows added one after another: the
-// general form of sumBlocks, whose constant Side keeps a column's sum in a register.
-template <class Real>
-SNARESIM_WIDE_VECTOR_CLONES void sumBlocksOfSide(const Real* __restrict w, int n, int side, double* __restrict acc, double* __restrict out)
-{
-    const int blocks = (n + side - 1) / side;
-    for (int by = 0; by < blocks; ++by)
-    {
-        const int first = by * side, last = std::min(n, first + side);
-        std::fill(acc, acc + (size_t) blocks * (size_t) side, 0.0);
-        for (int iy = first; iy < last; ++iy)
-        {
-            const Real* row = w + (size_t) iy * (size_t) n;
-            for (int ix = 0; ix < n; ++ix)
-                acc[ix] += (double) row[ix];
-        }
-        double* o = out + (size_t) by * (size_t) blocks;
-        for (int bx = 0; bx < blocks; ++bx)
-        {
-            double s = 0.0;
-            for (int c = 0; c < side; ++c)
-                s += acc[bx * side + c];
-            o[bx] = s;
-        }
-    }
-}
-template <class Real>
-void blockSums(const Real* w, int n, int side, double* acc, double* out)
-{
-    switch (side)
-    {
-        case 1: sumBlocks<1>(w, n, acc, out); return;
-        case 2: sumBlocks<2>(w, n, acc, out); return;
-        case 3: sumBlocks<3>(w, n, acc, out); return;
-        case 4: sumBlocks<4>(w, n, acc, out); return;
-        case 5: sumBlocks<5>(w, n, acc, out); return;
-        case 6: sumBlocks<6>(w, n, acc, out); return;
-        case 7: sumBlocks<7>(w, n, acc, out); return;
-        case 8: sumBlocks<8>(w, n, acc, out); return;
-        default: break;
-    }
-    sumBlocksOfSide(w, n, side, acc, out);
-}
-// The rectangle's second differences in time summed over blocks, in double: a band of side
-// rows into acc (vectorised along the rows), then its runs.
-template <class Real>
-SNARESIM_WIDE_VECTOR_CLONES void blockSecondDifferences(const Real* __restrict next, const Real* __restrict now, const Real* __restrict prev,
-                                                        int n, int ix0, int iy0, int columns, int rows, int side,
-                                                        double* __restrict acc, double* __restrict out)
-{
-    if (side == 1) // a block a node
-    {
-        for (int iy = 0; iy < rows; ++iy)
-        {
-            const size_t o = (size_t) (iy0 + iy) * (size_t) n + (size_t) ix0;
-            double* row = out + (size_t) iy * (size_t) columns;
-            for (int ix = 0; ix < columns; ++ix)
-                row[ix] = ((double) next[o + ix] - 2.0 * (double) now[o + ix]) + (double) prev[o + ix];
-        }
-        return;
-    }
-    const int bxs = (columns + side - 1) / side, bys = (rows + side - 1) / side;
-    for (int by = 0; by < bys; ++by)
-    {
-        std::fill(acc, acc + columns, 0.0);
-        for (int iy = iy0 + by * side; iy < std::min(iy0 + rows, iy0 + (by + 1) * side); ++iy)
-        {
-            const size_t o = (size_t) iy * (size_t) n + (size_t) ix0;
-            for (int ix = 0; ix < columns; ++ix)
-                acc[ix] += ((double) next[o + ix] - 2.0 * (double) now[o + ix]) + (double) prev[o + ix];
-        }
-        for (int bx = 0; bx < bxs; ++bx)
-        {
-            double s = 0.0;
-            for (int ix = bx * side; ix < std::min(columns, (bx + 1) * side); ++ix)
-                s += acc[ix];
-            out[by * bxs + bx] = s;
-        }
-    }
-}
-// w at count nodes into out (a gather).
-template <class Real>
-SNARESIM_WIDE_VECTOR_CLONES void gatherNodes(const Real* __restrict w, const int* __restrict nodes, double* __restrict out, int count)
-{
-#pragma omp simd
-    for (int j = 0; j < count; ++j)
-        out[j] = (double) w[nodes[j]];
-}
-// values at count distinct nodes of w (a scatter); returns the change of w's sum.
-template <class Real>
-SNARESIM_WIDE_VECTOR_CLONES double scatterNodes(Real* __restrict w, const int* __restrict nodes, const double* __restrict values, int count)
-{
-    double change = 0.0;
-#pragma omp simd reduction(+ : change)
-    for (int j = 0; j < count; ++j)
-    {
-        const Real v = (Real) values[j];
-        change += (double) v - (double) w[nodes[j]];
-        w[nodes[j]] = v;
-    }
-    return change;
-}
+#define SNARESIM_KERNELS "MembraneKernels.inl"
+#include "PerVectorTarget.inl"
 } // namespace
 
 void Membrane::setNextAt(const int* nodes, const double* values, int count)
 {
-    sumNext += single ? scatterNodes(fNext.data(), nodes, values, count) : scatterNodes(wNext.data(), nodes, values, count);
+    sumNext += single ? SNARESIM_ON_VECTOR_TARGET(scatterNodes(fNext.data(), nodes, values, count))
+                      : SNARESIM_ON_VECTOR_TARGET(scatterNodes(wNext.data(), nodes, values, count));
 }
 
 void Membrane::nextAt(const int* nodes, double* out, int count) const
 {
     if (single)
-        gatherNodes(fNext.data(), nodes, out, count);
+        SNARESIM_ON_VECTOR_TARGET(gatherNodes(fNext.data(), nodes, out, count));
     else
-        gatherNodes(wNext.data(), nodes, out, count);
+        SNARESIM_ON_VECTOR_TARGET(gatherNodes(wNext.data(), nodes, out, count));
 }
 
 // Double: row by row over the disc's runs of interior nodes (nodes outside stay zero, the
 // fixed rim); single: the whole grid at once (updateGridFloat). Both sum w^{n+1} for the
-// cavity on the way and are built for AVX-512, AVX2+FMA and baseline x86-64; the loader picks
-// the one the CPU runs.
+// cavity on the way and are built for each vector target (VectorTarget.h).
 void Membrane::computeFree(double pressure) { computeFree(pressure, 0.0, 0.0); }
 
 void Membrane::computeFree(double p0, double px, double py)
@@ -359,15 +140,19 @@ void Membrane::computeFree(double p0, double px, double py)
     if (single)
     {
         // rows 1 .. n-2, whole: every neighbour read stays inside the padded grid
-        const auto update = tilt ? (field ? updateGridFloat<true, true> : updateGridFloat<true, false>)
-                                 : (field ? updateGridFloat<false, true> : updateGridFloat<false, false>);
+        const auto update = tilt ? (field ? SNARESIM_ON_VECTOR_TARGET(updateGridFloat<true, true>)
+                                          : SNARESIM_ON_VECTOR_TARGET(updateGridFloat<true, false>))
+                                 : (field ? SNARESIM_ON_VECTOR_TARGET(updateGridFloat<false, true>)
+                                          : SNARESIM_ON_VECTOR_TARGET(updateGridFloat<false, false>));
         sumNext = update(fNext.data() + n, fNow.data() + n, fPrev.data() + n, fMask.data() + n, fX.data() + n, fY.data() + n,
                          field ? fField.data() + n : nullptr, n, n * (n - 2), r, cl, cs, (float) push, (float) (gain * px),
                          (float) (gain * py));
         return;
     }
-    const auto update = tilt ? (field ? updateRow<true, true> : updateRow<true, false>)
-                             : (field ? updateRow<false, true> : updateRow<false, false>);
+    const auto update = tilt ? (field ? SNARESIM_ON_VECTOR_TARGET(updateRow<true, true>)
+                                      : SNARESIM_ON_VECTOR_TARGET(updateRow<true, false>))
+                             : (field ? SNARESIM_ON_VECTOR_TARGET(updateRow<false, true>)
+                                      : SNARESIM_ON_VECTOR_TARGET(updateRow<false, false>));
     double sum = 0.0;
     for (int iy = 1; iy < n - 1; ++iy)
     {
@@ -387,9 +172,9 @@ std::array<double, 2> Membrane::tiltNext() const
     const int n = g.width();
     double sx = 0.0, sy = 0.0;
     if (single)
-        firstMoments(fNext.data(), fX.data(), fY.data(), n * n, sx, sy);
+        SNARESIM_ON_VECTOR_TARGET(firstMoments(fNext.data(), fX.data(), fY.data(), n * n, sx, sy));
     else
-        firstMoments(wNext.data(), dX.data(), dY.data(), n * n, sx, sy);
+        SNARESIM_ON_VECTOR_TARGET(firstMoments(wNext.data(), dX.data(), dY.data(), n * n, sx, sy));
     return { h * h * sx, h * h * sy };
 }
 
@@ -397,9 +182,9 @@ void Membrane::blockSumsNext(int side, double* out) const
 {
     const int n = g.width();
     if (single)
-        blockSums(fNext.data(), n, side, dRowScratch.data(), out);
+        SNARESIM_ON_VECTOR_TARGET(blockSums(fNext.data(), n, side, dRowScratch.data(), out));
     else
-        blockSums(wNext.data(), n, side, dRowScratch.data(), out);
+        SNARESIM_ON_VECTOR_TARGET(blockSums(wNext.data(), n, side, dRowScratch.data(), out));
 }
 
 void Membrane::blockAccelerationsIn(int side, int ix0, int iy0, int columns, int rows, double* out) const
@@ -407,38 +192,15 @@ void Membrane::blockAccelerationsIn(int side, int ix0, int iy0, int columns, int
     const int n = g.width();
     const int count = ((columns + side - 1) / side) * ((rows + side - 1) / side);
     if (single)
-        blockSecondDifferences(fNext.data(), fNow.data(), fPrev.data(), n, ix0, iy0, columns, rows, side, accScratch.data(), out);
+        SNARESIM_ON_VECTOR_TARGET(blockSecondDifferences<float>)(fNext.data(), fNow.data(), fPrev.data(), n, ix0, iy0,
+                                                                 columns, rows, side, accScratch.data(), out);
     else
-        blockSecondDifferences(wNext.data(), wNow.data(), wPrev.data(), n, ix0, iy0, columns, rows, side, accScratch.data(), out);
+        SNARESIM_ON_VECTOR_TARGET(blockSecondDifferences<double>)(wNext.data(), wNow.data(), wPrev.data(), n, ix0, iy0,
+                                                                  columns, rows, side, accScratch.data(), out);
     for (int b = 0; b < count; ++b)
         out[b] *= h * h;
 }
 
-namespace
-{
-// out[ix] = scale * perBlock[block[ix]] along a row (a band's blocks, node by node).
-template <class Real>
-SNARESIM_WIDE_VECTOR_CLONES void expandRow(int n, const int* __restrict block, const double* __restrict perBlock, double scale,
-                                           Real* __restrict out)
-{
-#pragma omp simd
-    for (int ix = 0; ix < n; ++ix)
-        out[ix] = (Real) (scale * perBlock[block[ix]]);
-}
-// A band's first row copied to its other rows.
-template <class Real>
-SNARESIM_WIDE_VECTOR_CLONES void copyRows(Real* band, int n, int rows)
-{
-    const Real* __restrict first = band;
-    for (int r = 1; r < rows; ++r)
-    {
-        Real* __restrict row = band + (size_t) r * (size_t) n;
-#pragma omp simd
-        for (int ix = 0; ix < n; ++ix)
-            row[ix] = first[ix];
-    }
-}
-} // namespace
 
 void Membrane::prepareBlocks(int side)
 {
@@ -480,13 +242,15 @@ void Membrane::expandBlockPressure()
         const size_t o = (size_t) first * (size_t) n;
         if (single)
         {
-            expandRow(n, columnBlock.data(), perBlock + (size_t) by * (size_t) blocks, gain, fField.data() + o);
-            copyRows(fField.data() + o, n, rows);
+            SNARESIM_ON_VECTOR_TARGET(expandRow<float>)(n, columnBlock.data(), perBlock + (size_t) by * (size_t) blocks, gain,
+                                                       fField.data() + o);
+            SNARESIM_ON_VECTOR_TARGET(copyRows(fField.data() + o, n, rows));
         }
         else
         {
-            expandRow(n, columnBlock.data(), perBlock + (size_t) by * (size_t) blocks, gain, dField.data() + o);
-            copyRows(dField.data() + o, n, rows);
+            SNARESIM_ON_VECTOR_TARGET(expandRow<double>)(n, columnBlock.data(), perBlock + (size_t) by * (size_t) blocks, gain,
+                                                        dField.data() + o);
+            SNARESIM_ON_VECTOR_TARGET(copyRows(dField.data() + o, n, rows));
         }
     }
 }

@@ -2,7 +2,7 @@
 
 #include "HeadCells.h"
 #include "Membrane.h"
-#include "VectorClones.h"
+#include "VectorTarget.h"
 
 #include <algorithm>
 #include <cmath>
@@ -31,60 +31,8 @@ double meanInverseOver(double x, double y, double z, double w, double r, const A
     return sum / 36.0;
 }
 
-// A microphone's runs of taps, a run per whole delay d from `slot`: now * A[cell] summed into
-// ring sample slot + d and next * A[cell] into the one after, lane by lane (Lanes floats a
-// sample). Each run holds whole vectors of Lanes taps (padded): a vector at a time (gathers),
-// no sum across the lanes here.
-template <int Lanes>
-SNARESIM_WIDE_VECTOR_CLONES void sumTapRuns(int delays, const int* __restrict runEnd, const int* __restrict cell,
-                                            const float* __restrict now, const float* __restrict next,
-                                            const float* __restrict A, float* __restrict ring, size_t slot, size_t mask)
-{
-    int t = 0;
-    for (int d = 0; d < delays; ++d, ++slot)
-    {
-        float s0[Lanes] = {}, s1[Lanes] = {};
-        for (const int end = runEnd[d]; t < end; t += Lanes)
-        {
-#pragma omp simd
-            for (int j = 0; j < Lanes; ++j)
-            {
-                const float a = A[cell[t + j]];
-                s0[j] += now[t + j] * a;
-                s1[j] += next[t + j] * a;
-            }
-        }
-        float* r0 = ring + (slot & mask) * Lanes;
-        float* r1 = ring + ((slot + 1) & mask) * Lanes;
-#pragma omp simd
-        for (int j = 0; j < Lanes; ++j)
-        {
-            r0[j] += s0[j];
-            r1[j] += s1[j];
-        }
-    }
-}
-
-// The cells' A^n = (V^{n+1} - 2 V^n + V^{n-1}) / k^2 from their blocks' sums at n+1 (V = scale
-// times the sum: h^2 and the outward sign), the volumes moved on a step; returns the whole
-// head's A^n.
-SNARESIM_WIDE_VECTOR_CLONES double cellAccelerations(int cells, const int* __restrict block, const double* __restrict blockSum,
-                                                     double scale, double inverseKk, double* __restrict vNow,
-                                                     double* __restrict vPrev, double* __restrict accel)
-{
-    double whole = 0.0;
-#pragma omp simd reduction(+ : whole)
-    for (int j = 0; j < cells; ++j)
-    {
-        const double v = scale * blockSum[block[j]];
-        const double a = (v - 2.0 * vNow[j] + vPrev[j]) * inverseKk; // A^n
-        vPrev[j] = vNow[j];
-        vNow[j] = v;
-        accel[j] = a;
-        whole += a;
-    }
-    return whole;
-}
+#define SNARESIM_KERNELS "PressureMicrophonesKernels.inl"
+#include "PerVectorTarget.inl"
 
 // Kirchhoff's obliquity (1 + cos theta) / 2 blended in by `far` (0 near the head: 1).
 double obliquityAt(double r, double far, double z, const AirPoint& p) { return 1.0 - far * 0.5 * (1.0 - std::abs(p.z_m - z) / r); }
@@ -297,8 +245,9 @@ void PressureMicrophones::listen(const Membrane& batter, const Membrane& carry, 
             membranes[hi]->blockSumsNext(h.side, h.blockSum.data()); // volumes / h^2
             blockSum = h.blockSum.data();
         }
-        h.accel[(size_t) h.cells] = cellAccelerations(h.cells, h.block.data(), blockSum, h.sign * h.nodeArea, inverseKk,
-                                                      h.vNow.data(), h.vPrev.data(), h.accel.data());
+        h.accel[(size_t) h.cells] = SNARESIM_ON_VECTOR_TARGET(cellAccelerations)(h.cells, h.block.data(), blockSum,
+                                                                                 h.sign * h.nodeArea, inverseKk, h.vNow.data(),
+                                                                                 h.vPrev.data(), h.accel.data());
     }
     const size_t mask = (size_t) rows - 1;
     for (int m = 0; m < numMics; ++m)
@@ -316,8 +265,8 @@ void PressureMicrophones::listen(const Membrane& batter, const Membrane& carry, 
             for (int i = 0; i < l.nearCells; ++i)
                 A[f.cells + 1 + i] = (float) (fine[i] * inverseKk);
         }
-        sumTapRuns<kLanes>(l.delays, l.runEnd.data(), l.cell.data(), l.now.data(), l.next.data(), A, l.direct.data(),
-                           (size_t) pos + (size_t) l.firstDelay, mask);
+        SNARESIM_ON_VECTOR_TARGET(sumTapRuns<kLanes>)(l.delays, l.runEnd.data(), l.cell.data(), l.now.data(), l.next.data(), A,
+                                                      l.direct.data(), (size_t) pos + (size_t) l.firstDelay, mask);
         push(l.around, l.facingWhole, f.accel[(size_t) f.cells]);
         const Head& o = heads[(size_t) (1 - l.facing)];
         push(l.around, l.otherWhole, o.accel[(size_t) o.cells]);

@@ -1,6 +1,6 @@
 #include "SnareWires.h"
 
-#include "VectorClones.h"
+#include "VectorTarget.h"
 
 #include <algorithm>
 #include <cmath>
@@ -52,22 +52,15 @@ void SnareWires::setCoefficients(double tension, double s0, double s1)
     f1 = -2.0 * s / q;
 }
 
-SNARESIM_VECTOR_CLONES void SnareWires::computeFree()
+namespace
 {
-    // Every wire's interior in one pass over the flat array (it also visits the end nodes with
-    // the wrong stencil, corrected after), then the ends with their half-cell stencil.
-    const int total = numWires * (M + 1);
-    const double* __restrict u = uNow.data();
-    const double* __restrict up = uPrev.data();
-    double* __restrict out = uNext.data();
-    for (int l = 1; l < total - 1; ++l)
-        out[l] = a0 * u[l] + a1 * (u[l - 1] + u[l + 1]) + b0 * up[l] + b1 * (up[l - 1] + up[l + 1]);
-    for (int i = 0; i < numWires; ++i)
-    {
-        const int first = i * (M + 1), last = first + M;
-        out[first] = e0 * u[first] + e1 * u[first + 1] + f0 * up[first] + f1 * up[first + 1];
-        out[last] = e0 * u[last] + e1 * u[last - 1] + f0 * up[last] + f1 * up[last - 1];
-    }
+#define SNARESIM_KERNELS "SnareWiresKernels.inl"
+#include "PerVectorTarget.inl"
+} // namespace
+
+void SnareWires::computeFree()
+{
+    SNARESIM_ON_VECTOR_TARGET(freeUpdate)(numWires, M, uNow.data(), uPrev.data(), uNext.data(), a0, a1, b0, b1, e0, e1, f0, f1);
 }
 
 double SnareWires::energyOf(const std::vector<double>& uNext, const std::vector<double>& uNow) const

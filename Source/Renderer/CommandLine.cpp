@@ -676,7 +676,8 @@ Output:
                         and the carry head's mean displacement under them (mm); bottom,
                         the number of wire points touching the carry head; time in ms
   --json                print one JSON object with the render statistics on stdout
-                        (default: a short human-readable summary on stdout)
+                        (default: a short human-readable summary on stdout); it names
+                        the engine's vector target (vector_target)
 
 Model:
   --preset NAME|FILE    start from a factory preset, or a preset file (a path ending in
@@ -776,6 +777,9 @@ Matching a recording:
                         the same seed gives the same preset file; another explores other
                         candidates (the distance varies with it: try a few)
 )" + presetLine() + R"(
+Environment: SNARESIM_VECTOR_TARGET=baseline|avx2|avx512 runs the engine's hot loops on
+that build (default: the widest the processor has; one it lacks: a line on stderr and the
+widest). baseline rounds the same on every x86-64 processor: the golden renders use it.
 Exit status: 0 success, 2 bad input or unwritable output (one line on stderr starting
 with "snaresim-render: error: ", no output file left behind), 1 internal failure,
 130 / 143 interrupted by SIGINT / SIGTERM (no output file left behind).

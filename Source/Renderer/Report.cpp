@@ -3,6 +3,7 @@
 #include "Benchmark.h"
 #include "Formatted.h"
 #include "Microphones.h"
+#include "VectorTarget.h"
 
 #include <juce_core/juce_core.h>
 
@@ -105,6 +106,7 @@ std::string formatJson(const RenderReport& r)
     object->setProperty("sample_rate", (juce::int64) std::llround(r.plan.sampleRate_Hz)); // a whole number of Hz
     object->setProperty("channels", r.stats.channels);
     object->setProperty("mic", text(std::string(micName(r.job.selectedMic()))));
+    object->setProperty("vector_target", text(std::string(snaresim::vectorTargetName(snaresim::vectorTarget()))));
     object->setProperty("samples", (juce::int64) r.stats.samples);
     object->setProperty("seconds_rendered", secondsRendered(r));
     object->setProperty("wall_seconds", r.stats.wallSeconds);
@@ -186,8 +188,9 @@ std::string benchSummary(const RenderReport& r, const BenchFigures& b)
     if (r.plan.strikesOutside > 0)
         s += formatted(" (%d more at or after the end, not played)", r.plan.strikesOutside);
     s += "\n";
-    s += formatted("realtime factor %.3gx (%.3f s of audio in %.3f s)\n", realtimeFactor(r), secondsRendered(r),
-                   r.stats.wallSeconds);
+    const std::string target(snaresim::vectorTargetName(snaresim::vectorTarget()));
+    s += formatted("realtime factor %.3gx (%.3f s of audio in %.3f s), vector target %s\n", realtimeFactor(r),
+                   secondsRendered(r), r.stats.wallSeconds, target.c_str());
     s += formatted("block time (each block's fastest of %d run%s): mean %.4g ms, worst %.4g ms; budget %.4g ms "
                    "(worst = %.3g x the budget)\n",
                    b.repeats, b.repeats == 1 ? "" : "s", 1000.0 * b.meanBlock_s, 1000.0 * b.worstBlock_s,

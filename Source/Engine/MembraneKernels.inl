@@ -1,0 +1,246 @@
+// The membrane's hot loops (eq. 22 and what the couplings read and write on the grid),
+// compiled once per vector target by PerVectorTarget.inl: no include guard, no includes.
+
+// One row of eq. (22): out = c0 w + c1 (4 neighbours of w) + d0 wp + d1 (4 neighbours of wp) + push
+// (+ slope m along the row with Tilt, + field[m] with Field), for `count` nodes that all lie inside
+// the disc; returns the sum of out.
+template <bool Tilt, bool Field>
+double updateRow(double* __restrict out, const double* __restrict w, const double* __restrict wp,
+                 const double* __restrict field, int n, int count, double c0, double c1, double d0,
+                 double d1, double push, double slope)
+{
+    double sum = 0.0; // summed on the way (vector lanes)
+#pragma omp simd reduction(+ : sum)
+    for (int m = 0; m < count; ++m)
+    {
+        const double nb = w[m - 1] + w[m + 1] + w[m - n] + w[m + n];
+        const double nbp = wp[m - 1] + wp[m + 1] + wp[m - n] + wp[m + n];
+        double next;
+        if constexpr (Tilt)
+            next = c0 * w[m] + c1 * nb + d0 * wp[m] + d1 * nbp + (push + slope * (double) m);
+        else
+            next = c0 * w[m] + c1 * nb + d0 * wp[m] + d1 * nbp + push;
+        if constexpr (Field)
+            next += field[m];
+        out[m] = next;
+        sum += next;
+    }
+    return sum;
+}
+
+// Eq. (22) in single precision over the whole padded grid, row after row without a break
+// (nodes on and outside the rim are multiplied by the mask, so they stay zero): the disc's
+// short rows cost more in loop ends than the corners' extra nodes in float. Written as an
+// increment, w+ = w + r v + cl L w + cs L v with v = w - w- and L the unscaled 5-point
+// Laplacian, so that no coefficient near 2 multiplies w: a float
+// coefficient's rounding then moves the modes by parts in 1e8 of their small restoring term,
+// not of 2 w. Returns the sum of out, in double.
+// With Tilt, a pressure px x + py y is added (xs, ys: x and y times the mask); with Field, a push
+// per node (field, times the mask).
+template <bool Tilt, bool Field>
+double updateGridFloat(float* __restrict out, const float* __restrict w, const float* __restrict wp,
+                       const float* __restrict mask, const float* __restrict xs,
+                       const float* __restrict ys, const float* __restrict field, int n, int count,
+                       float r, float cl, float cs, float push, float px, float py)
+{
+    double sum = 0.0; // summed on the way, in double (vector lanes: the order is not the rows')
+#pragma omp simd reduction(+ : sum)
+    for (int m = 0; m < count; ++m)
+    {
+        const float c = w[m], v = c - wp[m];
+        const float nb = w[m - 1] + w[m + 1] + w[m - n] + w[m + n];
+        const float nbp = wp[m - 1] + wp[m + 1] + wp[m - n] + wp[m + n];
+        float p = push;
+        if constexpr (Field)
+            p += field[m];
+        float next;
+        if constexpr (Tilt)
+            next = mask[m] * (c + (r * v + cl * (nb - 4.0f * c) + cs * ((nb - nbp) - 4.0f * v) + p))
+                 + (px * xs[m] + py * ys[m]);
+        else
+            next = mask[m] * (c + (r * v + cl * (nb - 4.0f * c) + cs * ((nb - nbp) - 4.0f * v) + p));
+        out[m] = next;
+        sum += (double) next;
+    }
+    return sum;
+}
+// sum(xs w), sum(ys w) over count nodes, in double (vector lanes).
+template <class Real>
+void firstMoments(const Real* __restrict w, const Real* __restrict xs, const Real* __restrict ys, int count,
+                  double& sx, double& sy)
+{
+    double ax = 0.0, ay = 0.0;
+#pragma omp simd reduction(+ : ax, ay)
+    for (int m = 0; m < count; ++m)
+    {
+        const double wm = (double) w[m];
+        ax += (double) xs[m] * wm;
+        ay += (double) ys[m] * wm;
+    }
+    sx = ax;
+    sy = ay;
+}
+// Block sums of an n x n grid, band by band: a band's Side rows summed node by node into one
+// row (the Side values held in registers, vectorised along the row; zero beyond n), then its
+// runs of Side values, a block each. In double whatever the state: the microphones take second
+// differences in time of these sums, which would lift a float sum's rounding by 1 / (omega k)^2.
+template <int Side, class Real>
+void sumBlocks(const Real* __restrict w, int n, double* __restrict acc, double* __restrict out)
+{
+    const int blocks = (n + Side - 1) / Side;
+    for (int by = 0; by < blocks; ++by)
+    {
+        const int first = by * Side;
+        const Real* row0 = w + (size_t) first * (size_t) n;
+        if (first + Side <= n)
+            for (int ix = 0; ix < n; ++ix)
+            {
+                double s = (double) row0[ix];
+                for (int r = 1; r < Side; ++r)
+                    s += (double) row0[(size_t) r * (size_t) n + (size_t) ix];
+                acc[ix] = s;
+            }
+        else // the last, short band
+            for (int ix = 0; ix < n; ++ix)
+            {
+                double s = 0.0;
+                for (int r = 0; r < n - first; ++r)
+                    s += (double) row0[(size_t) r * (size_t) n + (size_t) ix];
+                acc[ix] = s;
+            }
+        for (int ix = n; ix < blocks * Side; ++ix)
+            acc[ix] = 0.0;
+        double* o = out + (size_t) by * (size_t) blocks;
+        for (int bx = 0; bx < blocks; ++bx)
+        {
+            double s = acc[bx * Side];
+            for (int c = 1; c < Side; ++c)
+                s += acc[bx * Side + c];
+            o[bx] = s;
+        }
+    }
+}
+// The same for any side (fine grids: 96 kHz), the band's rows added one after another: the
+// general form of sumBlocks, whose constant Side keeps a column's sum in a register.
+template <class Real>
+void sumBlocksOfSide(const Real* __restrict w, int n, int side, double* __restrict acc, double* __restrict out)
+{
+    const int blocks = (n + side - 1) / side;
+    for (int by = 0; by < blocks; ++by)
+    {
+        const int first = by * side, last = std::min(n, first + side);
+        std::fill(acc, acc + (size_t) blocks * (size_t) side, 0.0);
+        for (int iy = first; iy < last; ++iy)
+        {
+            const Real* row = w + (size_t) iy * (size_t) n;
+            for (int ix = 0; ix < n; ++ix)
+                acc[ix] += (double) row[ix];
+        }
+        double* o = out + (size_t) by * (size_t) blocks;
+        for (int bx = 0; bx < blocks; ++bx)
+        {
+            double s = 0.0;
+            for (int c = 0; c < side; ++c)
+                s += acc[bx * side + c];
+            o[bx] = s;
+        }
+    }
+}
+template <class Real>
+void blockSums(const Real* w, int n, int side, double* acc, double* out)
+{
+    switch (side)
+    {
+        case 1: sumBlocks<1>(w, n, acc, out); return;
+        case 2: sumBlocks<2>(w, n, acc, out); return;
+        case 3: sumBlocks<3>(w, n, acc, out); return;
+        case 4: sumBlocks<4>(w, n, acc, out); return;
+        case 5: sumBlocks<5>(w, n, acc, out); return;
+        case 6: sumBlocks<6>(w, n, acc, out); return;
+        case 7: sumBlocks<7>(w, n, acc, out); return;
+        case 8: sumBlocks<8>(w, n, acc, out); return;
+        default: break;
+    }
+    sumBlocksOfSide(w, n, side, acc, out);
+}
+// The rectangle's second differences in time summed over blocks, in double: a band of side
+// rows into acc (vectorised along the rows), then its runs.
+template <class Real>
+void blockSecondDifferences(const Real* __restrict next, const Real* __restrict now, const Real* __restrict prev,
+                            int n, int ix0, int iy0, int columns, int rows, int side,
+                            double* __restrict acc, double* __restrict out)
+{
+    if (side == 1) // a block a node
+    {
+        for (int iy = 0; iy < rows; ++iy)
+        {
+            const size_t o = (size_t) (iy0 + iy) * (size_t) n + (size_t) ix0;
+            double* row = out + (size_t) iy * (size_t) columns;
+            for (int ix = 0; ix < columns; ++ix)
+                row[ix] = ((double) next[o + ix] - 2.0 * (double) now[o + ix]) + (double) prev[o + ix];
+        }
+        return;
+    }
+    const int bxs = (columns + side - 1) / side, bys = (rows + side - 1) / side;
+    for (int by = 0; by < bys; ++by)
+    {
+        std::fill(acc, acc + columns, 0.0);
+        for (int iy = iy0 + by * side; iy < std::min(iy0 + rows, iy0 + (by + 1) * side); ++iy)
+        {
+            const size_t o = (size_t) iy * (size_t) n + (size_t) ix0;
+            for (int ix = 0; ix < columns; ++ix)
+                acc[ix] += ((double) next[o + ix] - 2.0 * (double) now[o + ix]) + (double) prev[o + ix];
+        }
+        for (int bx = 0; bx < bxs; ++bx)
+        {
+            double s = 0.0;
+            for (int ix = bx * side; ix < std::min(columns, (bx + 1) * side); ++ix)
+                s += acc[ix];
+            out[by * bxs + bx] = s;
+        }
+    }
+}
+// w at count nodes into out (a gather).
+template <class Real>
+void gatherNodes(const Real* __restrict w, const int* __restrict nodes, double* __restrict out, int count)
+{
+#pragma omp simd
+    for (int j = 0; j < count; ++j)
+        out[j] = (double) w[nodes[j]];
+}
+// values at count distinct nodes of w (a scatter); returns the change of w's sum.
+template <class Real>
+double scatterNodes(Real* __restrict w, const int* __restrict nodes, const double* __restrict values, int count)
+{
+    double change = 0.0;
+#pragma omp simd reduction(+ : change)
+    for (int j = 0; j < count; ++j)
+    {
+        const Real v = (Real) values[j];
+        change += (double) v - (double) w[nodes[j]];
+        w[nodes[j]] = v;
+    }
+    return change;
+}
+// out[ix] = scale * perBlock[block[ix]] along a row (a band's blocks, node by node).
+template <class Real>
+void expandRow(int n, const int* __restrict block, const double* __restrict perBlock, double scale,
+               Real* __restrict out)
+{
+#pragma omp simd
+    for (int ix = 0; ix < n; ++ix)
+        out[ix] = (Real) (scale * perBlock[block[ix]]);
+}
+// A band's first row copied to its other rows.
+template <class Real>
+void copyRows(Real* band, int n, int rows)
+{
+    const Real* __restrict first = band;
+    for (int r = 1; r < rows; ++r)
+    {
+        Real* __restrict row = band + (size_t) r * (size_t) n;
+#pragma omp simd
+        for (int ix = 0; ix < n; ++ix)
+            row[ix] = first[ix];
+    }
+}

@@ -1,0 +1,135 @@
+// The snare contact's per-point loops (the quadratised solve, eq. 48-50), compiled once per
+// vector target by PerVectorTarget.inl: no include guard, no includes.
+
+// The per-point coefficients of the quadratised solve for the Hertz exponent (beta = 1.5, so
+// psi = psiScale xi^(5/4)), for `count` points whose groups' W0 and cc are W0[k] and cc[k] (the
+// groups' values copied beside their points), branch-free so that it
+// vectorises. xi* = u* - W0 is the prediction (no contact force); g is the secant of psi from
+// xi^{n-1} to xi*. While both touch, with x, y their fourth roots, it is
+// (y^5 - x^5) / (y^4 - x^4) = (x^4 + x^3 y + x^2 y^2 + x y^3 + y^4) / ((x + y)(x^2 + y^2)):
+// no difference of near values, down to the tangent (5/4) x when they meet.
+void hertzCoefficients(int count, const int* __restrict wireNode, const double* __restrict xiPrev,
+                       const double* __restrict u, const double* __restrict psi,
+                       const double* __restrict W0, const double* __restrict cc, double hs,
+                       double psiScale, double gammaS, double* __restrict gq,
+                       double* __restrict alpha, double* __restrict beta, double* __restrict uFree)
+{
+    for (int k = 0; k < count; ++k)
+    {
+        const double a = xiPrev[k];
+        const double us = u[wireNode[k]];
+        const double b = us - W0[k];
+        const double span = b - a;
+        // g in single precision: it may be any value without breaking the energy identity
+        // (header), so its rounding only perturbs the force law, by about 1e-7.
+        const float af = a > 0.0 ? (float) a : 0.0f, bf = b > 0.0 ? (float) b : 0.0f;
+        const float x = std::sqrt(std::sqrt(af)), y = std::sqrt(std::sqrt(bf));
+        const float x2 = x * x, y2 = y * y;
+        const bool both = (x > 0.0f) & (y > 0.0f);
+        // at most one touching: (psi(b) - psi(a)) / (b - a), one of the two terms zero
+        const float num = both ? (x2 * x2 + x * y * (x2 + y2) + x2 * y2) + y2 * y2 : bf * y - af * x;
+        const float den = both ? (x + y) * (x2 + y2) : (span != 0.0 ? (float) span : 1.0f);
+        const double g = psiScale * (double) (num / den);
+        const double B = 0.25 * g * g;
+        const double d = 1.0 / (1.0 + gammaS * B);
+        gq[k] = g;
+        alpha[k] = (g * psi[k] + B * span) * d;
+        beta[k] = cc[k] * hs * B * d;
+        uFree[k] = us;
+    }
+}
+
+// to[index[t]] = from[t] for count distinct indices (a scatter).
+void scatterPoints(int count, const int* __restrict index, const double* __restrict from, double* __restrict to)
+{
+#pragma omp simd
+    for (int t = 0; t < count; ++t)
+        to[index[t]] = from[t];
+}
+// out[t] = scale * from[index[t]] (a gather).
+void gatherScaled(int count, const int* __restrict index, const double* __restrict from, double scale,
+                  double* __restrict out)
+{
+#pragma omp simd
+    for (int t = 0; t < count; ++t)
+        out[t] = scale * from[index[t]];
+}
+
+// Per point, its group's S and W at S[k] and W[k] (copied beside the points): the force
+// f = alpha - beta S, the wire u = u* - gammaS f, the gap xi^{n+1} = u - W and psi at n+1/2;
+// `dropped` gets psi^2 where psi is reset.
+void finishPoints(int count, const double* __restrict alpha, const double* __restrict beta,
+                  const double* __restrict gq, const double* __restrict S,
+                  const double* __restrict W, double gammaS, const double* __restrict xiPrev,
+                  const double* __restrict xiNow, double* __restrict uFree,
+                  double* __restrict xiNext, double* __restrict psi, double* __restrict dropped)
+{
+    for (int k = 0; k < count; ++k)
+    {
+        const double f = alpha[k] - beta[k] * S[k];
+        const double u = uFree[k] - gammaS * f;
+        const double xiNew = u - W[k];
+        uFree[k] = u;
+        xiNext[k] = xiNew;
+        const double next = psi[k] + 0.5 * gq[k] * (xiNew - xiPrev[k]);
+        // psi at n+1/2 stands for the potential of xi^n and xi^{n+1}: on the step a point leaves
+        // the head it still holds what xi^n stored, and the next step gives that back as force.
+        // Apart at n and n+1, what is left is psi's drift: reset, so the next contact starts
+        // from zero.
+        const bool keep = (xiNew > 0.0) | (xiNow[k] > 0.0);
+        dropped[k] = keep ? 0.0 : next * next;
+        psi[k] = keep ? next : 0.0;
+    }
+}
+// One class of `count` groups of `size` points (member-major): per group S = sum alpha /
+// (1 + sum beta), the node W = W0 + cc h_s S. The sums run member by member over the groups
+// (contiguous, so they vectorise), each group's in member order; S and W hold them meanwhile.
+void solveClass(int size, int count, const double* __restrict alpha, const double* __restrict beta,
+                const double* __restrict W0, const double* __restrict cc, double hs,
+                double* __restrict S, double* __restrict W)
+{
+    for (int i = 0; i < count; ++i)
+        S[i] = W[i] = 0.0; // a class of size 0: nodes that hold wire ends only
+    for (int j = 0; j < size; ++j)
+        for (int i = 0; i < count; ++i)
+        {
+            S[i] += alpha[j * count + i];
+            W[i] += beta[j * count + i];
+        }
+    for (int i = 0; i < count; ++i)
+    {
+        S[i] = S[i] / (1.0 + W[i]);
+        W[i] = W0[i] + cc[i] * hs * S[i];
+    }
+}
+
+// Over all points: the sum of dropped, the largest gap (0 when all apart) and the number
+// touching, four points at a time (GCC's vector extensions, so that it vectorises).
+using Double4 = double __attribute__((vector_size(32)));
+using Long4 = long long __attribute__((vector_size(32)));
+double summarise(int n, const double* __restrict xi, const double* __restrict dropped, double& deepest,
+                 int& touching)
+{
+    Double4 sum = {}, top = {};
+    Long4 count = {};
+    int t = 0;
+    for (; t + 4 <= n; t += 4)
+    {
+        Double4 x, d;
+        std::memcpy(&x, xi + t, sizeof x);
+        std::memcpy(&d, dropped + t, sizeof d);
+        sum += d;
+        top = top < x ? x : top;
+        count -= x > 0.0; // true is -1
+    }
+    double total = (sum[0] + sum[1]) + (sum[2] + sum[3]);
+    deepest = std::max(std::max(top[0], top[1]), std::max(top[2], top[3]));
+    touching = (int) (count[0] + count[1] + count[2] + count[3]);
+    for (; t < n; ++t)
+    {
+        total += dropped[t];
+        deepest = std::max(deepest, xi[t]);
+        touching += xi[t] > 0.0 ? 1 : 0;
+    }
+    return total;
+}
