@@ -1,15 +1,21 @@
 // Golden renders: fixed scenarios played by the renderer (goldens.txt) and by the plug-in's
-// processor, compared sample by sample with the references in this folder. On the
-// double-precision engine a change of code that is not meant to change the sound must leave
-// them identical; the test states every difference in dB below the signal.
+// processor, compared sample by sample with the references in this folder. They run on the
+// path every x86-64 processor computes the same (CMakeLists.txt here: the baseline vector
+// target and glibc's baseline maths, set by ctest), so a change of code that is not meant to
+// change the sound must leave them identical, on any machine; the test states every
+// difference in dB below the signal. A one-ulp change of a coefficient fails them (the last
+// test here).
 //
 // Regenerate after an intended change of sound (and say so in the commit):
 //   SNARESIM_UPDATE_GOLDENS=1 ctest --test-dir build -L golden
 
 #include <catch2/catch.hpp>
 
+#include "DrumConfig.h"
+#include "Parameters.h"
 #include "PluginProcessor.h"
 #include "RendererTestSupport.h"
+#include "VectorTarget.h"
 
 #include <juce_audio_formats/juce_audio_formats.h>
 
@@ -24,6 +30,20 @@ using namespace rendertest;
 namespace
 {
 const fs::path goldenDir { SNARESIM_GOLDEN_DIR };
+
+// The goldens are made and compared on the deterministic path only: ctest sets it for this
+// executable (Tests/Golden/CMakeLists.txt); run by hand, it needs the same environment.
+void requireDeterministicPath()
+{
+    const char* tunables = std::getenv("GLIBC_TUNABLES");
+    INFO("the golden tests run with SNARESIM_VECTOR_TARGET=baseline and GLIBC_TUNABLES=" SNARESIM_GOLDEN_TUNABLES
+         " (ctest sets both); here the vector target is "
+         << snaresim::vectorTargetName(snaresim::vectorTarget()) << " and GLIBC_TUNABLES is "
+         << (tunables != nullptr ? tunables : "unset"));
+    REQUIRE(snaresim::vectorTarget() == snaresim::VectorTarget::baseline);
+    REQUIRE(tunables != nullptr);
+    REQUIRE(std::string(tunables) == SNARESIM_GOLDEN_TUNABLES);
+}
 
 bool updating()
 {
@@ -110,6 +130,7 @@ void writeFloatWav(const fs::path& file, const std::vector<float>& samples, doub
 
 TEST_CASE("the renderer's golden renders are unchanged", "[golden]")
 {
+    requireDeterministicPath();
     const auto list = goldenList();
     REQUIRE(list.size() >= 9);
     TempDir dir;
@@ -152,6 +173,7 @@ TEST_CASE("the renderer's golden renders are unchanged", "[golden]")
 
 TEST_CASE("the plug-in's golden render is unchanged", "[golden]")
 {
+    requireDeterministicPath();
     // 48 kHz, blocks of 64: a centre strike, an off-centre one, the damping raised while the
     // drum rings (the smoothing), a near-rim strike, a roll of three.
     constexpr double rate = 48000.0;
@@ -201,4 +223,54 @@ TEST_CASE("the plug-in's golden render is unchanged", "[golden]")
     const auto d = compare({ ref.samples }, { out });
     report("plugin-48k", d);
     CHECK(d.differing == 0);
+}
+
+TEST_CASE("a one-ulp change of one coefficient of the default drum fails the goldens", "[golden]")
+{
+    // The default golden's strike played in-process as the renderer plays it: the same bits as
+    // the reference's mix channel (--mic all: top, bottom, room, mix); then the same with one
+    // of the drum's coefficients moved by one unit in the last place, which must not pass.
+    requireDeterministicPath();
+    if (updating())
+        return; // it reads the references being written
+    const auto ref = readWav(goldenDir / "default-48k-all-mics.wav");
+    REQUIRE(ref.opened);
+    REQUIRE(ref.channels == 4);
+    REQUIRE(ref.sampleRate == 48000.0);
+    const auto& mix = ref.channelSamples[3];
+    const auto playWith = [&](auto&& change) {
+        auto config = snaresim::makeDrumConfig(snaresim::ParameterSet {}, 48000.0);
+        change(config);
+        return playInProcess(config, { { 0, 100 } }, (long long) mix.size()).mix;
+    };
+
+    const auto same = compare({ mix }, { playWith([](snaresim::DrumConfig&) {}) });
+    report("default-48k-all-mics (mix, in-process)", same);
+    REQUIRE(same.differing == 0);
+
+    // One unit in the last place of a double, or of a float where the engine computes in float
+    // (the product's heads: their coefficients are floats, which a double's last bit of the
+    // tension does not reach).
+    const auto up = [](double& v) { v = std::nextafter(v, INFINITY); };
+    const auto upFloat = [](double& v) { v = (double) std::nextafter((float) v, INFINITY); };
+    SECTION("the snares' contact stiffness")
+    {
+        const auto d = compare({ mix }, { playWith([&](snaresim::DrumConfig& c) { up(c.snares.stiffness); }) });
+        report("snare stiffness + 1 ulp", d);
+        CHECK(d.differing > 0);
+    }
+    SECTION("the wires' tension")
+    {
+        const auto d = compare({ mix }, { playWith([&](snaresim::DrumConfig& c) { up(c.snares.tension_N); }) });
+        report("wire tension + 1 ulp", d);
+        CHECK(d.differing > 0);
+    }
+    SECTION("the batter's tension, by one unit of its float coefficients")
+    {
+        REQUIRE(snaresim::makeDrumConfig(snaresim::ParameterSet {}, 48000.0).batter.precision
+                == snaresim::HeadPrecision::single_precision);
+        const auto d = compare({ mix }, { playWith([&](snaresim::DrumConfig& c) { upFloat(c.batter.tension_N_per_m); }) });
+        report("batter tension + 1 float ulp", d);
+        CHECK(d.differing > 0);
+    }
 }

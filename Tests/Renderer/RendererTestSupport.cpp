@@ -40,8 +40,25 @@ TempDir::~TempDir()
     fs::remove_all(base, ec);
 }
 
-int startRenderer(const std::vector<std::string>& args, const fs::path& captureDir)
+int startRenderer(const std::vector<std::string>& args, const fs::path& captureDir, const std::vector<std::string>& environment)
 {
+    // This process's environment less the names `environment` names, then its settings.
+    const auto nameOf = [](const std::string& entry) { return entry.substr(0, entry.find('=')); };
+    std::set<std::string> overridden;
+    for (const auto& entry : environment)
+        overridden.insert(nameOf(entry));
+    std::vector<std::string> envStrings;
+    for (char** e = environ; *e != nullptr; ++e)
+        if (overridden.count(nameOf(*e)) == 0)
+            envStrings.emplace_back(*e);
+    for (const auto& entry : environment)
+        if (entry.find('=') != std::string::npos)
+            envStrings.push_back(entry);
+    std::vector<char*> envp;
+    for (auto& s : envStrings)
+        envp.push_back(s.data());
+    envp.push_back(nullptr);
+
     const auto outFile = (captureDir / "stdout.txt").string();
     const auto errFile = (captureDir / "stderr.txt").string();
 
@@ -58,7 +75,7 @@ int startRenderer(const std::vector<std::string>& args, const fs::path& captureD
     posix_spawn_file_actions_addopen(&actions, 2, errFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
 
     pid_t pid = 0;
-    const int spawned = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+    const int spawned = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), envp.data());
     posix_spawn_file_actions_destroy(&actions);
     if (spawned != 0)
         throw std::runtime_error("cannot run " SNARESIM_RENDER_EXE);
@@ -79,9 +96,10 @@ RunResult waitForRenderer(int pid, const fs::path& captureDir)
     return result;
 }
 
-RunResult runRenderer(const std::vector<std::string>& args, const fs::path& captureDir)
+RunResult runRenderer(const std::vector<std::string>& args, const fs::path& captureDir,
+                      const std::vector<std::string>& environment)
 {
-    return waitForRenderer(startRenderer(args, captureDir), captureDir);
+    return waitForRenderer(startRenderer(args, captureDir, environment), captureDir);
 }
 
 std::vector<std::string> entries(const fs::path& directory)

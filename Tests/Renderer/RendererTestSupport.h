@@ -43,11 +43,15 @@ private:
     fs::path base;
 };
 
-// Runs snaresim-render with these arguments (no shell), capturing stdout and stderr.
-RunResult runRenderer(const std::vector<std::string>& args, const fs::path& captureDir);
+// Runs snaresim-render with these arguments (no shell), capturing stdout and stderr. Its
+// environment is this process's with `environment` laid over it: "NAME=VALUE" sets NAME,
+// "NAME" alone removes it.
+RunResult runRenderer(const std::vector<std::string>& args, const fs::path& captureDir,
+                      const std::vector<std::string>& environment = {});
 
 // The same in two halves: start it, then wait for it to end.
-int startRenderer(const std::vector<std::string>& args, const fs::path& captureDir); // the pid
+int startRenderer(const std::vector<std::string>& args, const fs::path& captureDir,
+                  const std::vector<std::string>& environment = {}); // the pid
 RunResult waitForRenderer(int pid, const fs::path& captureDir);
 
 // Names of the entries of a directory, sorted.
