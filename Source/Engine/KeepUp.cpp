@@ -31,6 +31,12 @@ public:
 
 private:
     unsigned int saved;
+#elif defined(__aarch64__) && defined(__GNUC__)
+    FlushDenormals() noexcept : saved (__builtin_aarch64_get_fpcr()) { __builtin_aarch64_set_fpcr (saved | (1u << 24)); } // FZ
+    ~FlushDenormals() { __builtin_aarch64_set_fpcr (saved); }
+
+private:
+    unsigned int saved;
 #endif
 };
 } // namespace
