@@ -15,6 +15,7 @@
 #include "Parameters.h"
 #include "PluginProcessor.h"
 #include "RendererTestSupport.h"
+#include "GoldenSupport.h"
 #include "VectorTarget.h"
 
 #include <juce_audio_formats/juce_audio_formats.h>
@@ -26,6 +27,9 @@
 #include <sstream>
 
 using namespace rendertest;
+using golden::compare;
+using golden::Difference;
+using golden::updating;
 
 namespace
 {
@@ -45,11 +49,6 @@ void requireDeterministicPath()
     REQUIRE(std::string(tunables) == SNARESIM_GOLDEN_TUNABLES);
 }
 
-bool updating()
-{
-    const char* v = std::getenv("SNARESIM_UPDATE_GOLDENS");
-    return v != nullptr && std::string(v) == "1";
-}
 
 struct Golden
 {
@@ -76,32 +75,6 @@ std::vector<Golden> goldenList()
         list.push_back(std::move(g));
     }
     return list;
-}
-
-struct Difference
-{
-    long differing = 0;
-    double maxAbs = 0.0;
-    double dbBelowSignal = -INFINITY;   // of the RMS difference, relative to the reference's RMS
-};
-
-Difference compare(const std::vector<std::vector<float>>& reference, const std::vector<std::vector<float>>& now)
-{
-    Difference d;
-    double signal = 0.0, error = 0.0;
-    for (size_t ch = 0; ch < reference.size(); ++ch)
-        for (size_t i = 0; i < reference[ch].size(); ++i)
-        {
-            const double r = reference[ch][i], x = now[ch][i];
-            signal += r * r;
-            error += (x - r) * (x - r);
-            if (x != r)
-                ++d.differing;
-            d.maxAbs = std::max(d.maxAbs, std::abs(x - r));
-        }
-    if (error > 0.0)
-        d.dbBelowSignal = 10.0 * std::log10(signal / error);
-    return d;
 }
 
 void report(const std::string& name, const Difference& d)

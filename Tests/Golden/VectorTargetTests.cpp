@@ -11,6 +11,7 @@
 // own choice of maths, as a user's machine runs it. A target the processor lacks falls back to
 // the widest it has (stated in the output), which is then the one held to the bounds.
 
+#include "GoldenSupport.h"
 #include "RendererTestSupport.h"
 #include "StrikeFeatures.h"
 
@@ -22,17 +23,11 @@
 #include <sstream>
 
 using namespace rendertest;
+using golden::updating;
 
 namespace
 {
 const fs::path goldenDir { SNARESIM_GOLDEN_DIR };
-
-// While the references are regenerated (SNARESIM_UPDATE_GOLDENS=1) they are not read here.
-bool updating()
-{
-    const char* v = std::getenv("SNARESIM_UPDATE_GOLDENS");
-    return v != nullptr && std::string(v) == "1";
-}
 
 // Snares off, the drum is linear once the stick has left, and the targets differ by round-off
 // only (docs/VECTOR_TARGETS.md): measured 81.6 dB below the signal on avx2 and avx512 with the
@@ -66,19 +61,6 @@ Render render(const TempDir& dir, std::vector<std::string> args, const std::vect
     const auto data = readWav(wav);
     REQUIRE(data.opened);
     return { data.channelSamples, json["vector_target"].toString().toStdString() };
-}
-
-double dbBelowSignal(const std::vector<std::vector<float>>& reference, const std::vector<std::vector<float>>& now)
-{
-    double signal = 0.0, error = 0.0;
-    for (size_t ch = 0; ch < reference.size(); ++ch)
-        for (size_t i = 0; i < reference[ch].size(); ++i)
-        {
-            const double r = reference[ch][i], d = (double) now[ch][i] - r;
-            signal += r * r;
-            error += d * d;
-        }
-    return error > 0.0 ? 10.0 * std::log10(signal / error) : INFINITY;
 }
 
 // The mean features of strikes at velocities 100, 101, ... (one render each, 0.5 s): the
@@ -152,8 +134,8 @@ TEST_CASE("each vector target plays the drum without snares within round-off of 
     {
         const auto single = render(dir, snaresOff, environmentOf(target));
         const auto wide = render(dir, doubleHeads, environmentOf(target));
-        const double dbSingle = dbBelowSignal(ref.channelSamples, single.channels);
-        const double dbDouble = dbBelowSignal(doubleRef.channels, wide.channels);
+        const double dbSingle = golden::compare(ref.channelSamples, single.channels).dbBelowSignal;
+        const double dbDouble = golden::compare(doubleRef.channels, wide.channels).dbBelowSignal;
         std::cout << "vector target " << target << " (ran " << single.target << "), snares off: float batter " << dbSingle
                   << " dB below the signal, double batter " << dbDouble << " dB\n";
         INFO("target " << target << " ran as " << single.target << ": " << dbSingle << " / " << dbDouble << " dB below the signal");
