@@ -168,7 +168,7 @@ std::vector<Corner> corners()
 
 } // namespace
 
-TEST_CASE("every parameter at its limits and random combinations play a fortissimo roll safely", "[corners]")
+TEST_CASE("every parameter at its limits and random combinations play a fortissimo roll safely", "[corners][slow]")
 {
     const double seconds = rollSeconds();
     const auto list = corners();

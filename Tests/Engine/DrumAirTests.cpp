@@ -32,7 +32,7 @@ DrumConfig inAirBox(DrumConfig c)
 const char* nameOf(CollisionScheme s) { return s == CollisionScheme::newton ? "Newton" : "quadratised"; }
 } // namespace
 
-TEST_CASE("the whole drum in a lossless, reflecting air box conserves energy to round-off", "[drum][airbox][energy]")
+TEST_CASE("the whole drum in a lossless, reflecting air box conserves energy to round-off", "[drum][airbox][energy][slow]")
 {
     DrumConfig cfg = inAirBox(test::wholeDrum()); // 20 wires, 44.1 kHz, 0.6 m box
     cfg.snares.scheme = GENERATE(CollisionScheme::newton, CollisionScheme::quadratised);
@@ -92,7 +92,7 @@ TEST_CASE("the drum in an absorbing, lossy air box never gains energy from one s
     CHECK(airLoss > 0.0);
 }
 
-TEST_CASE("the air box couples the heads: their (0,1) in-phase and anti-phase pair beside the cavity's", "[drum][airbox][modes]")
+TEST_CASE("the air box couples the heads: their (0,1) in-phase and anti-phase pair beside the cavity's", "[drum][airbox][modes][slow]")
 {
     DrumConfig cfg = test::wholeDrum();
     cfg.snares.engaged = false;
@@ -293,7 +293,7 @@ TEST_CASE("air box configs that cannot work throw std::invalid_argument with a r
     CHECK(l.air.sigma_m == 0.0);
 }
 
-TEST_CASE("the air box's air loads the batter's higher modes with the near field's mass, rho_a / k on each side", "[drum][airbox][modes][nearfield]")
+TEST_CASE("the air box's air loads the batter's higher modes with the near field's mass, rho_a / k on each side", "[drum][airbox][modes][nearfield][slow]")
 {
     // A head mode of wavenumber k = j_mn / R moves far slower than sound, so the air it pushes
     // only sloshes beside it: a field falling as exp(-k |z|) whose pressure is rho_a / k times

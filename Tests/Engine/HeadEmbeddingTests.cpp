@@ -94,7 +94,7 @@ TEST_CASE("the embedding's J conserves volume and links the head's nodes to the 
     }
 }
 
-TEST_CASE("a head embedded in lossless air conserves the total energy to round-off", "[airbox][embedding][energy]")
+TEST_CASE("a head embedded in lossless air conserves the total energy to round-off", "[airbox][embedding][energy][slow]")
 {
     const double k = 1.0 / fs;
     // the head finer than the air, coarser, and three times coarser (about 9 air nodes to a head node)
@@ -130,7 +130,7 @@ TEST_CASE("a head embedded in lossless air conserves the total energy to round-o
     CHECK(head.isFinite());
 }
 
-TEST_CASE("the air's mass lowers the head's (0,1) mode", "[airbox][embedding]")
+TEST_CASE("the air's mass lowers the head's (0,1) mode", "[airbox][embedding][slow]")
 {
     const double k = 1.0 / fs;
     const int steps = 16384;

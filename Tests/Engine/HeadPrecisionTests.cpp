@@ -161,7 +161,7 @@ std::string describe(const Features& f)
 }
 } // namespace
 
-TEST_CASE("single-precision heads play the double-precision drum to within 80 dB over 2 s (snares off)", "[precision]")
+TEST_CASE("single-precision heads play the double-precision drum to within 80 dB over 2 s (snares off)", "[precision][slow]")
 {
     // Without the snares the drum is not chaotic, so the two outputs can be compared sample by
     // sample. One step's rounding in float is 2^-24 (-144 dB); a random walk of 96 000 of them
@@ -176,7 +176,7 @@ TEST_CASE("single-precision heads play the double-precision drum to within 80 dB
     CHECK(below > 80.0);
 }
 
-TEST_CASE("single-precision heads keep the snare drum's sound: centroid, band shares and decay", "[precision]")
+TEST_CASE("single-precision heads keep the snare drum's sound: centroid, band shares and decay", "[precision][slow]")
 {
     // The mean features of 18 strikes (meanFeatures) with single-precision heads against the
     // same with double ones; Quality 1 against Quality 2 must differ, or the test would not tell.

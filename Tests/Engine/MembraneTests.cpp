@@ -106,7 +106,7 @@ TEST_CASE("the lossless head's modes match the ideal membrane (Bessel zeros)", "
     CHECK(peaks[0] == Approx(f01).epsilon(0.01));
 }
 
-TEST_CASE("the product's grids keep the low batter modes at the Bessel frequencies", "[membrane]")
+TEST_CASE("the product's grids keep the low batter modes at the Bessel frequencies", "[membrane][slow]")
 {
     // The product's grids (makeDrumConfig at 48 kHz, designed for the largest tension the
     // control allows) at Quality 2 (the default, twice the bound) and 1, the batter alone and

@@ -69,7 +69,7 @@ TEST_CASE("outside air: with its resistances the energy never rises and energy +
     CHECK(drum.energy().dissipated_J > 0.1 * e0); // the drum radiates a real share in 0.45 s
 }
 
-TEST_CASE("outside air: the drum's lowest modes match the air box's within 2 % in frequency and 25 % in decay", "[outside][airbox]")
+TEST_CASE("outside air: the drum's lowest modes match the air box's within 2 % in frequency and 25 % in decay", "[outside][airbox][slow]")
 {
     // The same drum (the pair tables' grids, snares off, lossless heads) in the reduced model
     // and in a 1.4 m air box with absorbing walls, measured alike (LowModes.h). The box's figures

@@ -7,7 +7,7 @@
 using namespace snaresim;
 using namespace snaresim::test;
 
-TEST_CASE("pressure microphones: octave bands 125 Hz - 4 kHz within 3 dB of the air box's pressure, and the whole real-time drum to 500 Hz", "[mics][airbox]")
+TEST_CASE("pressure microphones: octave bands 125 Hz - 4 kHz within 3 dB of the air box's pressure, and the whole real-time drum to 500 Hz", "[mics][airbox][slow]")
 {
     // The same heads' motion heard two ways: the air box's own pressure at the microphones and
     // the radiation model on the box's heads. The box's heads stand in for the real-time ones

@@ -132,7 +132,7 @@ std::vector<std::string> cheap(std::vector<std::string> args)
 
 } // namespace
 
-TEST_CASE("a MIDI file of 100 000 notes renders with a progress line on a terminal, in bounded memory", "[renderer][long]")
+TEST_CASE("a MIDI file of 100 000 notes renders with a progress line on a terminal, in bounded memory", "[renderer][long][slow]")
 {
     TempDir dir;
     const auto many = dir.in() / "many.mid", few = dir.in() / "few.mid";

@@ -177,7 +177,7 @@ TEST_CASE("match: a FLAC recording reads as the same strike in WAV does", "[rend
     CHECK((double) features[0]["band_shares"]["<1k"] == Approx((double) features[1]["band_shares"]["<1k"]).epsilon(1e-6));
 }
 
-TEST_CASE("match: the membrane and snare tensions of a SnareSim strike recovered from far away", "[renderer][match]")
+TEST_CASE("match: the membrane and snare tensions of a SnareSim strike recovered from far away", "[renderer][match][slow]")
 {
     // Two strikes of the default drum but for the two tensions; each matched from the other end
     // of both ranges. The snares are chaotic: no candidate but the very drum gives a distance of
@@ -288,7 +288,7 @@ TEST_CASE("match: the default parameters searched, without the snare ones when t
     }
 }
 
-TEST_CASE("match: the same command writes the same preset file, another seed searches elsewhere", "[renderer][match]")
+TEST_CASE("match: the same command writes the same preset file, another seed searches elsewhere", "[renderer][match][slow]")
 {
     TempDir dir;
     // A SnareSim strike far from the start (damping 10 % against the default 75 %): any seed
