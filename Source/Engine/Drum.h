@@ -128,6 +128,7 @@ public:
     const Membrane& carry() const { return carryHead; }
     const SnareWires& snareWires() const { return wires; }
     const SnareContact& snareContact() const { return snareCoupling; }
+    SnareContact& snareContact() { return snareCoupling; }
     const Cavity& cavity() const { return air; }
     const OutsideAir& outsideAir() const { return outside; }
     const CavityModes& cavityModes() const { return modes; }

@@ -85,10 +85,18 @@ SnareContact::SnareContact(const SnareSpec& spec, SnareWires& wires, Membrane& c
     pointWireNode = std::move(wireNodeOrdered);
     pointHeadNode = std::move(headNodeOrdered);
     wireInterior = M - 1;
-    for (auto* v : { &groupW0, &groupCc, &groupS, &groupW })
+    for (auto* v : { &groupW0, &groupCc, &groupW })
         v->assign(groupNode.size(), 0.0);
-    for (auto* v : { &gq, &alphaQ, &betaQ, &uFree, &dropped, &pointW0, &pointCc, &pointS, &pointW })
+    for (auto* v : { &gq, &alphaQ, &betaQ, &uFree, &pointW0, &pointCc, &pointS, &pointW, &solveXiPrev, &solveXiNow,
+                     &solveXiNext, &solvePsi, &solveDropped })
         v->assign(numPoints, 0.0);
+    for (auto* v : { &solveGroupW0, &solveGroupCc, &solveGroupS, &solveGroupW })
+        v->assign(groupNode.size(), 0.0);
+    groupReach.assign(groupNode.size(), 0.0);
+    activePoints.assign(numPoints, 0);
+    solveWireNode.assign(numPoints, 0);
+    activeGroups.assign(groupNode.size(), 0);
+    activeClasses.reserve(classes.size());
     psiQ.assign(numPoints, 0.0);
     trialPsi = psiQ;
     rLast.assign(numPoints, std::numeric_limits<double>::quiet_NaN());
@@ -137,18 +145,41 @@ namespace
 #include "PerVectorTarget.inl"
 } // namespace
 
-void SnareContact::expandToPoints(const double* perGroup, double* perPoint) const
+void SnareContact::expandToPoints(const std::vector<SizeClass>& layout, const double* perGroup, double* perPoint)
 {
-    for (const SizeClass& c : classes)
+    for (const SizeClass& c : layout)
         for (int j = 0; j < c.size; ++j)
             std::memcpy(perPoint + c.pointBegin + j * c.groupCount, perGroup + c.groupBegin, sizeof(double) * (size_t) c.groupCount);
 }
 
+void SnareContact::coefficients(int count, const int* wireNode, const double* xiBefore, const double* psiBefore, const double* W0,
+                                const double* cc, double gammaS, const double* u)
+{
+    // f = A + B xi^{n+1} with B = g^2/4, A = g psi^{n-1/2} - B xi^{n-1}, and
+    // xi^{n+1} = xi* - gammaS f - cc h_s S, S = sum f over the group. Eliminating xi^{n+1}:
+    // f = alpha - beta S with alpha = (A + B xi*) / (1 + gammaS B), beta = cc h_s B / (1 + gammaS B).
+    if (quarterPower)
+    {
+        SNARESIM_ON_VECTOR_TARGET(hertzCoefficients)(count, wireNode, xiBefore, u, psiBefore, W0, cc, hs, psiScale, gammaS,
+                                                     gq.data(), alphaQ.data(), betaQ.data(), uFree.data());
+        return;
+    }
+    for (int t = 0; t < count; ++t)
+    {
+        const double us = u[wireNode[t]], a = xiBefore[t];
+        const double predicted = us - W0[t];
+        const double gp = psiSlope(a, predicted);
+        const double B = 0.25 * gp * gp;
+        const double d = 1.0 / (1.0 + gammaS * B);
+        gq[(size_t) t] = gp;
+        alphaQ[(size_t) t] = (gp * psiBefore[t] + B * (predicted - a)) * d;
+        betaQ[(size_t) t] = cc[t] * hs * B * d;
+        uFree[(size_t) t] = us;
+    }
+}
+
 SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wires)
 {
-    // Every group is solved every step: where a group's points are apart at n-1 and stay apart
-    // without forces, g = 0 gives no force and the free update stands, as if it were skipped;
-    // the work per step is the same whatever the wires do.
     const double h = carry.grid().spacing();
     const double gammaS = wires.interiorGain(); // u^{n+1} per unit force density (N/m)
     double* u = wires.uNext.data();
@@ -167,54 +198,103 @@ SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wire
 
     // Per point: g^n is the slope of psi(xi) = sqrt(2 Phi(xi)) from xi^{n-1} to the prediction
     // xi* = u* - W0 (no contact force), so psi follows sqrt(2 Phi) closely where the prediction
-    // is good, and g = 0 (no force, psi stays zero) where both are apart.
-    // f = A + B xi^{n+1} with B = g^2/4, A = g psi^{n-1/2} - B xi^{n-1}, and
-    // xi^{n+1} = xi* - gammaS f - cc h_s S, S = sum f over the group. Eliminating xi^{n+1}:
-    // f = alpha - beta S with alpha = (A + B xi*) / (1 + gammaS B), beta = cc h_s B / (1 + gammaS B).
+    // is good, and g = 0 (no force, psi stays zero) where both are apart. Each point's group's
+    // W0 beside it (member j of a class holds the class's groups in order: a copy per member),
+    // so that every per-point loop runs once over all points.
     const int n = (int) pointWireNode.size();
-    // Each point's group's W0 and c' beside it (member j of a class holds the class's groups in
-    // order: a copy per member), so that every per-point loop runs once over all points.
-    expandToPoints(groupW0.data(), pointW0.data());
-    expandToPoints(groupCc.data(), pointCc.data());
-    if (quarterPower)
-        SNARESIM_ON_VECTOR_TARGET(hertzCoefficients)(n, pointWireNode.data(), xiPrev.data(), u, psiQ.data(), pointW0.data(),
-                                                     pointCc.data(), hs, psiScale, gammaS, gq.data(), alphaQ.data(),
-                                                     betaQ.data(), uFree.data());
-    else
-        for (int t = 0; t < n; ++t)
-        {
-            const double us = u[pointWireNode[(size_t) t]], a = xiPrev[(size_t) t];
-            const double predicted = us - pointW0[(size_t) t];
-            const double gp = psiSlope(a, predicted);
-            const double B = 0.25 * gp * gp;
-            const double d = 1.0 / (1.0 + gammaS * B);
-            gq[(size_t) t] = gp;
-            alphaQ[(size_t) t] = (gp * psiQ[(size_t) t] + B * (predicted - a)) * d;
-            betaQ[(size_t) t] = pointCc[(size_t) t] * hs * B * d;
-            uFree[(size_t) t] = us;
-        }
+    // The groups holding a point that takes part, and those holding wire ends (their node moves
+    // with the ends), are solved; the others keep xi* and their free node, as their solve would
+    // leave them. The work is at most that of every point touching.
+    for (const SizeClass& c : classes)
+        SNARESIM_ON_VECTOR_TARGET(predictClass)(c.size, c.groupCount, pointWireNode.data() + c.pointBegin, u,
+                                                groupW0.data() + c.groupBegin, xiPrev.data() + c.pointBegin,
+                                                psiQ.data() + c.pointBegin, xiNext.data() + c.pointBegin,
+                                                groupReach.data() + c.groupBegin);
+    for (int g : endGroups)
+        groupReach[(size_t) g] = 1.0;
+    int solvedGroups = 0, solvedPoints = 0;
+    activeClasses.clear(); // reserved to classes.size(): no allocation
+    for (const SizeClass& c : classes)
+    {
+        const int groupBegin = solvedGroups;
+        const int count = SNARESIM_ON_VECTOR_TARGET(listReaching)(c.groupCount, groupReach.data() + c.groupBegin, c.groupBegin,
+                                                                 activeGroups.data() + groupBegin);
+        solvedGroups += count;
+        if (count == 0)
+            continue;
+        activeClasses.push_back({ c.size, groupBegin, count, solvedPoints });
+        for (int j = 0; j < c.size; ++j)
+            for (int a = 0; a < count; ++a)
+                activePoints[(size_t) solvedPoints++] = c.pointBegin + j * c.groupCount + (activeGroups[(size_t) (groupBegin + a)] - c.groupBegin);
+    }
+    // Most points taking part (a fortissimo strike; or a test's reference, solveEveryPoint):
+    // every group is solved in place, without gathering, which is the all-touching case's work.
+    const bool whole = solveEveryPoint || 4 * solvedPoints > 3 * n;
+    const int m = whole ? n : solvedPoints;
+    lastSolvedPoints = m;
+    const int* group = activeGroups.data();
+    const int* point = activePoints.data();
+    const std::vector<SizeClass>& layout = whole ? classes : activeClasses;
+    const int* wireNode = pointWireNode.data();
+    const double *before = xiPrev.data(), *now = xiNow.data(), *W0 = groupW0.data(), *cc = groupCc.data();
+    double *psiSolved = psiQ.data(), *xiSolved = xiNext.data(), *W = groupW.data();
+    if (! whole)
+    {
+        // the groups taking part gathered, member-major by class as above
+        SNARESIM_ON_VECTOR_TARGET(gatherPoints<int>)(m, point, pointWireNode.data(), solveWireNode.data());
+        SNARESIM_ON_VECTOR_TARGET(gatherPoints<double>)(m, point, xiPrev.data(), solveXiPrev.data());
+        SNARESIM_ON_VECTOR_TARGET(gatherPoints<double>)(m, point, xiNow.data(), solveXiNow.data());
+        SNARESIM_ON_VECTOR_TARGET(gatherPoints<double>)(m, point, psiQ.data(), solvePsi.data());
+        SNARESIM_ON_VECTOR_TARGET(gatherPoints<double>)(solvedGroups, group, groupW0.data(), solveGroupW0.data());
+        SNARESIM_ON_VECTOR_TARGET(gatherPoints<double>)(solvedGroups, group, groupCc.data(), solveGroupCc.data());
+        wireNode = solveWireNode.data();
+        before = solveXiPrev.data();
+        now = solveXiNow.data();
+        W0 = solveGroupW0.data();
+        cc = solveGroupCc.data();
+        psiSolved = solvePsi.data();
+        xiSolved = solveXiNext.data();
+        W = solveGroupW.data();
+    }
+    expandToPoints(layout, W0, pointW0.data());
+    expandToPoints(layout, cc, pointCc.data());
+    coefficients(m, wireNode, before, psiSolved, pointW0.data(), pointCc.data(), gammaS, u);
 
     // Per group: S = sum alpha / (1 + sum beta) and W; then the node and the ends (eq. 32a).
-    for (const SizeClass& c : classes)
+    // Every group's node is written, those left out with W0 (their free value), so that the
+    // head's running sum of w^{n+1} (Membrane::setNextAt) adds the same changes in the same
+    // order whichever groups were solved.
+    for (const SizeClass& c : layout)
         SNARESIM_ON_VECTOR_TARGET(solveClass)(c.size, c.groupCount, alphaQ.data() + c.pointBegin, betaQ.data() + c.pointBegin,
-                                              groupW0.data() + c.groupBegin, groupCc.data() + c.groupBegin, hs,
-                                              groupS.data() + c.groupBegin, groupW.data() + c.groupBegin);
+                                              W0 + c.groupBegin, cc + c.groupBegin, hs, solveGroupS.data() + c.groupBegin,
+                                              W + c.groupBegin);
+    if (! whole)
+    {
+        std::memcpy(groupW.data(), groupW0.data(), sizeof(double) * (size_t) numGroups);
+        SNARESIM_ON_VECTOR_TARGET(scatterPoints)(solvedGroups, group, solveGroupW.data(), groupW.data());
+    }
     carry.setNextAt(groupNode.data(), groupW.data(), numGroups);
     for (int g : endGroups)
         for (int e = groupEndBegin[(size_t) g]; e < groupEndBegin[(size_t) g + 1]; ++e)
             u[endWireNode[(size_t) groupEnds[(size_t) e]]] = groupW[(size_t) g];
 
-    // Per point: the force, the wire, the gap and psi at n+1/2.
-    expandToPoints(groupS.data(), pointS.data());
-    expandToPoints(groupW.data(), pointW.data());
-    SNARESIM_ON_VECTOR_TARGET(finishPoints)(n, alphaQ.data(), betaQ.data(), gq.data(), pointS.data(), pointW.data(), gammaS,
-                                            xiPrev.data(), xiNow.data(), uFree.data(), xiNext.data(), psiQ.data(),
-                                            dropped.data());
-    SNARESIM_ON_VECTOR_TARGET(scatterPoints)(n, pointWireNode.data(), uFree.data(), u);
+    // Per point: the force, the wire, the gap and psi at n+1/2, put back in place.
+    expandToPoints(layout, solveGroupS.data(), pointS.data());
+    expandToPoints(layout, W, pointW.data());
+    SNARESIM_ON_VECTOR_TARGET(finishPoints)(m, alphaQ.data(), betaQ.data(), gq.data(), pointS.data(), pointW.data(), gammaS, before,
+                                            now, uFree.data(), xiSolved, psiSolved, solveDropped.data());
+    SNARESIM_ON_VECTOR_TARGET(scatterPoints)(m, wireNode, uFree.data(), u);
+    if (! whole)
+    {
+        SNARESIM_ON_VECTOR_TARGET(scatterPoints)(m, point, solveXiNext.data(), xiNext.data());
+        SNARESIM_ON_VECTOR_TARGET(scatterPoints)(m, point, solvePsi.data(), psiQ.data());
+    }
 
+    // The points left out are apart (xi* <= 0) and hold no psi: the deepest gap, the points
+    // touching and psi's resets are among those solved.
     SnareSolveResult result;
-    const double sumRemoved = SNARESIM_ON_VECTOR_TARGET(summarise)(n, xiNext.data(), dropped.data(), result.maxPenetration_m,
-                                                                   result.contacts);
+    const double sumRemoved = SNARESIM_ON_VECTOR_TARGET(summarise)(m, xiSolved, solveDropped.data(),
+                                                                   result.maxPenetration_m, result.contacts);
     lastCorrection = 0.5 * hs * sumRemoved;
     return result;
 }

@@ -34,9 +34,11 @@
 //   recomputed, so a little can be left then. Where a point is apart at n and n+1 it is reset
 //   to zero and the energy removed, h_s psi^2 / 2 >= 0, is booked as a loss (stepLoss()),
 //   so the scheme stays passive and the ledger balances.
-//   Every group is solved on every step, the points apart included (g = 0 there: no force), so
-//   a step costs the same whatever the wires do; g is computed in single precision (any g
-//   keeps the identity), everything that enters the energy in double.
+//   A point apart at n-1, apart in the prediction and holding no psi gets g = 0, no force and
+//   keeps psi = 0: its node group is left out of the step unless another of its points takes
+//   part, which gives the same numbers as solving it; the work per step is at most that of
+//   every point touching. g is computed in single precision (any g keeps the identity),
+//   everything that enters the energy in double.
 
 #include "Membrane.h"
 #include "PowerLawPotential.h"
@@ -93,6 +95,13 @@ public:
     // The state a step changes beyond the wires' and the head's next levels (the quadratised
     // psi), saved before a step and put back to solve the same step again (DrumAir).
     void saveTrial() { trialPsi = psiQ; }
+
+    // The quadratised solve takes the node groups holding a point that touches at n-1, would
+    // touch without contact forces, or holds psi (and the groups holding wire ends); the others
+    // stay as their solve would leave them. Every group solved instead (a test's reference):
+    void setSolveEveryPoint(bool every) { solveEveryPoint = every; }
+    // the points the last quadratised step solved (at most numPoints())
+    int solvedPoints() const { return lastSolvedPoints; }
     void restoreTrial() { psiQ = trialPsi; }
 
     void advance();
@@ -157,12 +166,24 @@ private:
     // Newton: per-group scratch (sized for the largest group)
     std::vector<int> active;
     std::vector<double> a, b, r, psi, dpsi, phiA;
-    // quadratised: per group W0, c', S = sum f, W; per point g, alpha, beta, u*, and the
-    // energy psi's reset removed
-    std::vector<double> groupW0, groupCc, groupS, groupW;
-    std::vector<double> gq, alphaQ, betaQ, uFree, dropped;
+    // quadratised: per group W0, c' and W (all groups); per point solved g,
+    // alpha, beta, u*
+    std::vector<double> groupW0, groupCc, groupW;
+    std::vector<double> gq, alphaQ, betaQ, uFree;
     std::vector<double> pointW0, pointCc, pointS, pointW; // each point's group's W0, c', S, W
-    void expandToPoints(const double* perGroup, double* perPoint) const;
+    // The solve's subset: per group its reach (predictClass: positive when it takes part), the
+    // groups and points that do (the class layout over them: activeClasses), their values gathered.
+    std::vector<double> groupReach;
+    std::vector<int> activeGroups, activePoints, solveWireNode;
+    std::vector<SizeClass> activeClasses;
+    std::vector<double> solveXiPrev, solveXiNow, solveXiNext, solvePsi, solveDropped;
+    std::vector<double> solveGroupW0, solveGroupCc, solveGroupS, solveGroupW;
+    bool solveEveryPoint = false;
+    int lastSolvedPoints = 0;
+    static void expandToPoints(const std::vector<SizeClass>& layout, const double* perGroup, double* perPoint);
+    // alpha, beta, g and u* of `count` points into alphaQ, betaQ, gq and uFree
+    void coefficients(int count, const int* wireNode, const double* xiBefore, const double* psiBefore, const double* W0,
+                      const double* cc, double gammaS, const double* u);
 
     SnareWires& snares;
     Membrane& head; // the carry head

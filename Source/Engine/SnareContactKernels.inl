@@ -133,3 +133,50 @@ double summarise(int n, const double* __restrict xi, const double* __restrict dr
     }
     return total;
 }
+
+// One class of `count` groups of `size` points (member-major), each group's W0 at W0[i]: per
+// point the gap without contact forces, xi* = u* - W0, into xiNext (the gap of a point left out
+// of the solve); per group the largest of its points' xi^{n-1}, xi* and |psi| into reach. A
+// group whose reach is not positive has no point touching at n-1 or at xi* and none holding
+// psi: each of its points has g = 0, no force and keeps psi = 0, so its solve leaves it as it is.
+void predictClass(int size, int count, const int* __restrict wireNode, const double* __restrict u,
+                  const double* __restrict W0, const double* __restrict xiPrev,
+                  const double* __restrict psi, double* __restrict xiNext,
+                  double* __restrict reach)
+{
+    for (int i = 0; i < count; ++i)
+        reach[i] = 0.0;
+    for (int j = 0; j < size; ++j)
+        for (int i = 0; i < count; ++i)
+        {
+            const int k = j * count + i;
+            const double b = u[wireNode[k]] - W0[i];
+            xiNext[k] = b;
+            const double x = xiPrev[k] > b ? xiPrev[k] : b;
+            const double p = std::abs(psi[k]);
+            const double r = x > p ? x : p;
+            reach[i] = reach[i] > r ? reach[i] : r;
+        }
+}
+
+// The indices first + i of the `count` groups whose reach is positive, in order, into list;
+// returns how many.
+int listReaching(int count, const double* __restrict reach, int first, int* __restrict list)
+{
+    int n = 0;
+    for (int i = 0; i < count; ++i)
+    {
+        list[n] = first + i;
+        n += reach[i] > 0.0 ? 1 : 0;
+    }
+    return n;
+}
+
+// out[t] = from[index[t]] (a gather), for doubles and ints.
+template <typename T>
+void gatherPoints(int count, const int* __restrict index, const T* __restrict from, T* __restrict out)
+{
+#pragma omp simd
+    for (int t = 0; t < count; ++t)
+        out[t] = from[index[t]];
+}
