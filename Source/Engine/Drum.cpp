@@ -82,7 +82,7 @@ Drum::Drum(const DrumConfig& config)
       outsideCoupling(batterHead, carryHead, outside), modes(cfg.cavity, cfg.cavityModesUpTo_Hz(), cfg.batter.radius_m, k),
       modesCoupling(batterHead, carryHead, modes, cfg.cavity.modeCellSize_m), nearField(cfg, k),
       nearFieldCoupling(batterHead, carryHead, nearField, cfg.cavity.modeCellSize_m, cfg.outside.nearFieldCellSize_m),
-      listeners(cfg, batterHead, carryHead),
+      listeners(cfg, batterHead, carryHead), toHost(cfg.outputFactor()),
       engaged(cfg.snares.engaged)
 {
     if (cfg.cavity.model == AirModel::airbox)
@@ -394,6 +394,21 @@ template <class Lap>
 
 double Drum::step()
 {
+    const int factor = toHost.factor();
+    if (factor == 1)
+        return simulate();
+    if (hostPhase == 0)
+    {
+        simulate();
+        toHost.push({ signals.mix, signals.top_Pa, signals.bottom_Pa, signals.far_Pa });
+    }
+    lastPhase = hostPhase;
+    hostPhase = hostPhase + 1 == factor ? 0 : hostPhase + 1;
+    return toHost.value(0, lastPhase);
+}
+
+double Drum::simulate()
+{
     if (profiling)
     {
         PhaseClock<true> lap(stepProfile);
@@ -471,14 +486,16 @@ double Drum::stepWith(Lap& lap)
 double Drum::output(Mic mic) const
 {
     const auto& m = cfg.mics;
+    const bool interpolated = toHost.factor() > 1;
+    auto at = [&](int channel, double simulated) { return interpolated ? toHost.value(channel, lastPhase) : simulated; };
     switch (mic)
     {
-        case Mic::top: return cfg.outputGain * m.topGain * signals.top_Pa;
-        case Mic::bottom: return cfg.outputGain * m.bottomGain * signals.bottom_Pa;
-        case Mic::far: return cfg.outputGain * m.farGain * signals.far_Pa;
+        case Mic::top: return cfg.outputGain * m.topGain * at(1, signals.top_Pa);
+        case Mic::bottom: return cfg.outputGain * m.bottomGain * at(2, signals.bottom_Pa);
+        case Mic::far: return cfg.outputGain * m.farGain * at(3, signals.far_Pa);
         case Mic::mix: break;
     }
-    return signals.mix;
+    return at(0, signals.mix);
 }
 
 void Drum::retrieveRisingMallets()
@@ -519,6 +536,8 @@ void Drum::reset()
     ledger.clearValues();
     signals = {};
     listeners.clear();
+    toHost.clear();
+    hostPhase = lastPhase = 0;
     samplesRendered = 0;
 }
 

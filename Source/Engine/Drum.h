@@ -15,6 +15,7 @@
 #include "DrumConfig.h"
 #include "DrumSnapshot.h"
 #include "EnergyLedger.h"
+#include "HostRateInterpolator.h"
 #include "Mallet.h"
 #include "MalletContact.h"
 #include "Membrane.h"
@@ -74,7 +75,12 @@ public:
     Drum& operator=(const Drum&) = delete;
 
     const DrumConfig& config() const { return cfg; }
-    double sampleRate() const { return cfg.sampleRate_Hz; }
+    // the host's rate, at which step() and process() play (config().outputRate())
+    double sampleRate() const { return cfg.outputRate(); }
+    // the rate the physics is simulated at (config().sampleRate_Hz; HostRateInterpolator.h)
+    double simulationRate() const { return cfg.sampleRate_Hz; }
+    // host samples between the simulated sound and its interpolation to the host's rate
+    int outputDelay() const { return toHost.delay(); }
 
     // Start a strike with the next free mallet (round robin): speed in m/s (> 0, downward),
     // position as fractions of the radius. Real-time safe.
@@ -96,11 +102,13 @@ public:
     void setSnaresEngaged(bool engaged);
     bool snaresEngaged() const { return engaged; }
 
-    // Advance one sample and return the mixed output sample.
+    // Advance one sample of the host's rate and return the mixed output sample: a step of the
+    // simulation (one in outputFactor(): on the first of them), the signals interpolated.
     double step();
+    // the last simulated step's signals (at the simulation's rate)
     const MicSignals& lastSignals() const { return signals; }
-    // The last step's signal of one microphone at audio level (its gain and the output gain
-    // applied); Mic::mix is what step() returned.
+    // The last host sample's signal of one microphone at audio level (its gain and the output
+    // gain applied); Mic::mix is what step() returned.
     double output(Mic mic) const;
 
     // Render n samples of the mix (overwrites out). Real-time safe.
@@ -150,8 +158,9 @@ public:
 private:
     auto energyTerms() const; // the ledger's terms and their owners (Drum.cpp)
     void updateEnergy();
+    double simulate();             // one step of the simulation
     template <class Lap>
-    double stepWith(Lap& lap);     // step(), lap(phase) after each phase (Drum.cpp)
+    double stepWith(Lap& lap);     // simulate(), lap(phase) after each phase (Drum.cpp)
     template <class Lap>
     void stepCouplings(Lap& lap);      // steps 1-2 of step() (free updates, couplings)
     template <class Lap>
@@ -182,6 +191,8 @@ private:
     std::array<double, MalletContact::maxMallets> malletsSaved {};
 
     PressureMicrophones listeners; // the microphones: a listener, no energy, no force
+    HostRateInterpolator toHost;   // the signals at the host's rate
+    int hostPhase = 0, lastPhase = 0; // of the next and the last host sample, 0 .. factor - 1
     EnergyLedger ledger;
     int malletsTerm = -1, snaresTerm = -1; // the ledger terms a strike and the snares switch change
     SolverStats stats;

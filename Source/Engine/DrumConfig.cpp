@@ -2,6 +2,7 @@
 
 #include "Cavity.h"
 #include "CavityModes.h"
+#include "HostRateInterpolator.h"
 #include "Membrane.h"
 #include "NearFieldAir.h"
 #include "OutsideAir.h"
@@ -100,6 +101,10 @@ void DrumConfig::validate() const
     require(std::isfinite(sampleRate_Hz) && sampleRate_Hz >= 1000.0 && sampleRate_Hz <= 768000.0,
             "sample rate must be within 1000..768000 Hz", sampleRate_Hz);
     const double k = 1.0 / sampleRate_Hz;
+    const int factor = outputFactor();
+    require(std::isfinite(outputRate()) && std::abs(outputRate() - factor * sampleRate_Hz) <= 1e-9 * outputRate()
+                && (factor == 1 || ((factor & (factor - 1)) == 0 && factor <= 16 && cavity.model != AirModel::airbox)),
+            "the output rate must be the sample rate times 1, 2, 4, 8 or 16 (1 in the air box)", outputRate());
     require(cavity.model == AirModel::none || cavity.model == AirModel::cavity || cavity.model == AirModel::airbox,
             "unknown air model", (double) cavity.model);
     require(std::isfinite(cavity.shellDepth_m) && cavity.shellDepth_m >= 0.02 && cavity.shellDepth_m <= 1.0,
@@ -286,7 +291,9 @@ DrumConfig::DrumConfig() : DrumConfig(mapParameters(ParameterSet {}, 48000.0)) {
 DrumConfig mapParameters(const ParameterSet& p, double sampleRate_Hz) noexcept
 {
     DrumConfig c { DrumConfig::Unmapped {} };
-    c.sampleRate_Hz = sampleRate_Hz;
+    c.cavity.model = static_cast<AirModel>(std::lround(p.get(ParamId::airModel))); // none, cavity, airbox: the choices in order
+    c.sampleRate_Hz = c.cavity.model == AirModel::airbox ? sampleRate_Hz : physicsRateFor(sampleRate_Hz);
+    c.outputRate_Hz = c.sampleRate_Hz == sampleRate_Hz ? 0.0 : sampleRate_Hz; // 0: the same
     // Damping sets the T60 of the heads' lowest modes (dampingT60); sigma0 = 3 ln(10) / T60
     // (the amplitude falls by 60 dB in T60).
     const double sigma0 = 3.0 * std::log(10.0) / dampingT60(p.get(ParamId::damping));
@@ -325,7 +332,6 @@ DrumConfig mapParameters(const ParameterSet& p, double sampleRate_Hz) noexcept
     c.snares.scheme = p.get(ParamId::snareSolver) >= 0.5 ? CollisionScheme::newton : CollisionScheme::quadratised;
     c.cavity.shellDepth_m = p.get(ParamId::shellDepth);
     c.cavity.gridShellDepth_m = spec(ParamId::shellDepth).minValue;
-    c.cavity.model = static_cast<AirModel>(std::lround(p.get(ParamId::airModel))); // none, cavity, airbox: the choices in order
     c.outside.enabled = p.get(ParamId::outsideAir) > 0.5;
     c.air.sigma_m = p.get(ParamId::airLoss);
     // ParamId::offlineAirBox is the host's, not the drum's: the plug-in reads it to choose the air

@@ -9,6 +9,7 @@
 #include "Parameters.h"
 
 #include <array>
+#include <cmath>
 
 namespace snaresim
 {
@@ -171,7 +172,12 @@ struct DrumConfig
     struct Unmapped {};
     explicit DrumConfig(Unmapped) {}
 
-    double sampleRate_Hz = 48000.0;
+    double sampleRate_Hz = 48000.0;     // the simulation's rate: the time step k = 1 / rate
+    // The host's rate, a power-of-two multiple of sampleRate_Hz (HostRateInterpolator.h);
+    // 0: the same.
+    double outputRate_Hz = 0.0;
+    double outputRate() const { return outputRate_Hz > 0.0 ? outputRate_Hz : sampleRate_Hz; }
+    int outputFactor() const { return (int) std::lround(outputRate() / sampleRate_Hz); }
     MembraneSpec batter;
     MembraneSpec carry { .radius_m = 0.1778, .density_kg_per_m2 = 0.106 }; // 3 mil PET
     SnareSpec snares;
@@ -215,7 +221,9 @@ struct DrumConfig
 };
 
 // Map the user-facing parameters onto the physical description, validated (throws
-// std::invalid_argument when the model cannot run at this sample rate and quality).
+// std::invalid_argument when the model cannot run at this sample rate and quality). The drum
+// is simulated at physicsRateFor(sampleRate_Hz) and heard at sampleRate_Hz (outputRate_Hz),
+// but in the air box, which is simulated at the host's rate.
 DrumConfig makeDrumConfig(const ParameterSet& params, double sampleRate_Hz);
 
 // The same mapping without validation and without allocating: for the audio thread, where

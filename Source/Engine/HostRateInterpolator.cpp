@@ -1,0 +1,103 @@
+#include "HostRateInterpolator.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace snaresim
+{
+
+namespace
+{
+constexpr double kPassEdge = 0.45;   // of the simulated rate
+constexpr double kStopEdge = 0.5;    // of the simulated rate
+constexpr double kStop_dB = 100.0;   // the images' least attenuation
+
+double besselI0(double x)
+{
+    // power series of I0: sum ((x/2)^k / k!)^2, to round-off
+    double sum = 1.0, term = 1.0;
+    for (int k = 1; k < 200 && term > 1e-17 * sum; ++k)
+    {
+        term *= (0.5 * x / k) * (0.5 * x / k);
+        sum += term;
+    }
+    return sum;
+}
+} // namespace
+
+double physicsRateFor(double hostRate_Hz) noexcept
+{
+    double rate = hostRate_Hz;
+    while (rate * 0.5 >= 44100.0)
+        rate *= 0.5;
+    return rate;
+}
+
+HostRateInterpolator::HostRateInterpolator(int factor) : L(std::max(1, factor))
+{
+    if (L > 1)
+    {
+        // Kaiser's estimate of the length for the transition (in cycles per host sample) and
+        // the attenuation; odd, so that the delay is whole.
+        const double transition = (kStopEdge - kPassEdge) / L;
+        const double beta = 0.1102 * (kStop_dB - 8.7);
+        const int estimate = (int) std::ceil((kStop_dB - 8.0) / (2.285 * 2.0 * std::numbers::pi * transition)) + 1;
+        perPhase = (estimate + 1 + L - 1) / L;
+        taps = perPhase * L - 1;
+        const double cutoff = 0.5 * (kPassEdge + kStopEdge) / L; // cycles per host sample
+        const double centre = 0.5 * (taps - 1);
+        std::vector<double> prototype((size_t) taps);
+        for (int i = 0; i < taps; ++i)
+        {
+            const double t = i - centre;
+            const double sinc = t == 0.0 ? 2.0 * cutoff : std::sin(2.0 * std::numbers::pi * cutoff * t) / (std::numbers::pi * t);
+            const double r = t / centre;
+            prototype[(size_t) i] = sinc * besselI0(beta * std::sqrt(std::max(0.0, 1.0 - r * r))) / besselI0(beta);
+        }
+        // each phase sums to one: a constant passes unchanged
+        h.assign((size_t) (perPhase * L), 0.0);
+        for (int p = 0; p < L; ++p)
+        {
+            double sum = 0.0;
+            for (int m = 0; m < perPhase; ++m)
+                if (p + m * L < taps)
+                    sum += prototype[(size_t) (p + m * L)];
+            for (int m = 0; m < perPhase; ++m)
+                if (p + m * L < taps)
+                    h[(size_t) (p * perPhase + m)] = prototype[(size_t) (p + m * L)] / sum;
+        }
+    }
+    else
+        h.assign(1, 1.0);
+    ring.assign((size_t) (numChannels * 2 * perPhase), 0.0);
+}
+
+void HostRateInterpolator::push(const std::array<double, numChannels>& x) noexcept
+{
+    pos = pos == 0 ? perPhase - 1 : pos - 1;
+    for (int c = 0; c < numChannels; ++c)
+    {
+        double* r = ring.data() + (size_t) (c * 2 * perPhase);
+        r[pos] = r[pos + perPhase] = x[(size_t) c];
+    }
+}
+
+double HostRateInterpolator::value(int c, int phase) const noexcept
+{
+    // y[n L + p] = sum_m h[p + m L] x[n - m]; the ring holds x[n - m] at pos + m
+    const double* x = ring.data() + (size_t) (c * 2 * perPhase) + pos;
+    const double* g = h.data() + (size_t) (phase * perPhase);
+    double y = 0.0;
+    for (int m = 0; m < perPhase; ++m)
+        y += g[m] * x[m];
+    return y;
+}
+
+void HostRateInterpolator::clear() noexcept
+{
+    std::fill(ring.begin(), ring.end(), 0.0);
+    pos = 0;
+}
+
+} // namespace snaresim
