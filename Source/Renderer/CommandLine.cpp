@@ -657,8 +657,12 @@ Output:
                         channel each in order (pressure, 0.005 per Pa)
   --seconds S           length in seconds, 0 < S <= 3600 (default: 2; with --midi, the
                         latest strike + 2). Strikes at or after the end are not played.
-  --sample-rate HZ      whole number of Hz, 8000..384000 (default 48000)
-  --energy-csv FILE     also write the energy ledger, one row per sample:
+  --sample-rate HZ      whole number of Hz, 8000..384000 (default 48000). From 88200 Hz
+                        the drum is simulated at the rate halved while it stays at 44.1
+                        kHz or above and interpolated to it (1.34 ms later at 96 and 192
+                        kHz); the air box at the rate itself
+  --energy-csv FILE     also write the energy ledger, one row per sample (from 88.2 kHz
+                        a simulated step's ledger on each of its samples):
                         time_s, one column per term of the ledger (batter_J, carry_J,
                         mallets_J, snares_J, cavity_J, airbox_J), total_J, dissipated_J,
                         injected_J, balance_J (total = the terms' sum; balance = total
