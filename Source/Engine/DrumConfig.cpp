@@ -20,6 +20,11 @@ namespace snaresim
 
 namespace
 {
+// Quality's grids are designed at 48 kHz: at a lower rate the heads and wires keep the grids
+// they have at 48 kHz where those are stable, so the drum is the same at 44.1 kHz (and at
+// 88.2 and 176.4 kHz, simulated at 44.1: HostRateInterpolator.h).
+constexpr double kGridDesignStep_s = 1.0 / 48000.0;
+
 void require(bool ok, const char* what, double value)
 {
     if (ok)
@@ -316,6 +321,7 @@ DrumConfig mapParameters(const ParameterSet& p, double sampleRate_Hz) noexcept
     {
         m->gridSigma1_m2_per_s = spec(ParamId::highDamping).maxValue;
         m->gridCoarseness = coarseness;
+        m->gridTimeStep_s = kGridDesignStep_s;
     }
     // Single precision for the batter alone: the carry head, which the snares strike, shifts
     // the buzz's mean spectrum in float (docs/MODEL.md, "Heads in single precision").
@@ -327,6 +333,7 @@ DrumConfig mapParameters(const ParameterSet& p, double sampleRate_Hz) noexcept
     c.snares.tension_N = p.get(ParamId::snareTension);
     c.snares.gridTension_N = spec(ParamId::snareTension).maxValue;
     c.snares.gridCoarseness = coarseness;
+    c.snares.gridTimeStep_s = kGridDesignStep_s;
     c.snares.engaged = p.get(ParamId::snaresEngaged) >= 0.5;
     c.snares.count = (int) std::lround(p.get(ParamId::snareCount));
     c.snares.scheme = p.get(ParamId::snareSolver) >= 0.5 ? CollisionScheme::newton : CollisionScheme::quadratised;

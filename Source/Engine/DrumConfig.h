@@ -35,6 +35,10 @@ struct MembraneSpec
     double gridTension_N_per_m = 0.0;
     double gridSigma1_m2_per_s = -1.0;
     double gridCoarseness = 1.0;        // h = coarseness * h_min(eq. 39); >= 1 (from the schema)
+    // The time step the coarseness is measured against where the step is longer: the grid is
+    // then coarseness * h_min(this step), or h_min of the step where that is coarser (0: the
+    // step itself). A grid so designed is the same at every rate below the design rate.
+    double gridTimeStep_s = 0.0;
     HeadPrecision precision = HeadPrecision::double_precision; // from the schema; the air box runs double
 };
 
@@ -69,6 +73,7 @@ struct SnareSpec
     double gridTension_N = 0.0;         // design values of the wire grid, eq. (40) (0 / < 0: actual)
     double gridSigma1_m2_per_s = -1.0;
     double gridCoarseness = 1.0;        // h_s = coarseness * h_s,min(eq. 40); >= 1 (from the schema)
+    double gridTimeStep_s = 0.0;        // as MembraneSpec::gridTimeStep_s
     double stiffness = 1.0e9;           // kappa_s, N/m per m^beta
     double exponent = 1.5;              // beta (1 ... 1.5; 1.5 is the Hertz exponent)
     bool engaged = true;                // false: thrown off, out of contact (from the schema)

@@ -11,6 +11,7 @@
 
 #include "DrumConfig.h"
 
+#include <algorithm>
 #include <vector>
 
 namespace snaresim
@@ -24,7 +25,12 @@ public:
     // Grid spacing from eq. (40) for the design tension and sigma1 (before fitting to the length).
     static double minimumSpacing(const SnareSpec& spec, double timeStep_s);
     // The spacing the grid is built for: minimumSpacing times the coarseness factor.
-    static double gridSpacing(const SnareSpec& spec, double timeStep_s) { return spec.gridCoarseness * minimumSpacing(spec, timeStep_s); }
+    // Below the design rate (SnareSpec::gridTimeStep_s) that of the design step, or the bound.
+    static double gridSpacing(const SnareSpec& spec, double timeStep_s)
+    {
+        const double design = spec.gridTimeStep_s > 0.0 ? std::min(timeStep_s, spec.gridTimeStep_s) : timeStep_s;
+        return std::max(spec.gridCoarseness * minimumSpacing(spec, design), minimumSpacing(spec, timeStep_s));
+    }
 
     int count() const { return numWires; }
     int intervals() const { return M; }           // nodes per wire: M + 1

@@ -28,9 +28,16 @@ TEST_CASE("the head grid follows the stability bound eq. 39", "[membrane]")
     const double h = head.grid().spacing();
     CHECK(head.grid().numInterior() == Approx(std::numbers::pi * std::pow((0.1778 - 0.5 * h) / h, 2)).epsilon(0.005));
 
+    // Coarser: a multiple of the bound of the step itself, or of a shorter design step
+    // (MembraneSpec::gridTimeStep_s: the grid of that rate, where it is stable).
     MembraneSpec coarse = cfg.batter;
     coarse.gridCoarseness = 2.0;
+    coarse.gridTimeStep_s = 0.0;
     CHECK(Membrane(coarse, 1.0 / 44100.0).grid().spacing() == Approx(2.0 * head.grid().spacing()));
+    coarse.gridTimeStep_s = 1.0 / 48000.0;
+    CHECK(Membrane(coarse, 1.0 / 44100.0).grid().spacing() == Approx(2.0 * std::sqrt(2.0) * c / 48000.0).epsilon(1e-12));
+    coarse.gridCoarseness = 1.05; // 1.05 bounds at 48 kHz are finer than one at 44.1 kHz: the bound
+    CHECK(Membrane(coarse, 1.0 / 44100.0).grid().spacing() == Approx(head.grid().spacing()).epsilon(1e-12));
 }
 
 TEST_CASE("impossible grids are refused with a clear message", "[membrane]")
