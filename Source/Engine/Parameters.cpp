@@ -67,7 +67,7 @@ constexpr std::array<ParameterSpec, kNumParameters> kSpecs {{
     { P::outputGain, "output_gain", "Output level", "dB", -48.0, 12.0, 0.0, S::linear, N::coefficients,
       "Output level", C, "", "output" },
     { P::gridCoarseness, "grid_coarseness", "Quality (grid coarseness)", "", 1.0, 4.0, 2.0, S::linear, N::newGrid,
-      "Head and snare-wire grid spacing as a multiple of the stability bounds (eq. 39, 40); larger is cheaper and duller", C, "", "model" },
+      "Head and snare-wire grid spacing as a multiple of the stability bounds (eq. 39, 40) at 48 kHz, the same grids at every rate where they are stable; larger is cheaper and duller", C, "", "model" },
     { P::snareSolver, "snare_solver", "Snare collision solver", "", 0.0, 1.0, 0.0, S::linear, N::newModel,
       "Snare/head collisions: quadratised (one linear solve per sample, real time) or Newton (the paper's eq. 50, iterative)",
       K, "quadratised|newton", "model" },
