@@ -373,6 +373,21 @@ DrumConfig makeDrumConfig(const ParameterSet& p, double sampleRate_Hz)
     return c;
 }
 
+double qualityBandwidth_Hz(double coarseness) noexcept
+{
+    ParameterSet p;
+    p.setClamped(ParamId::gridCoarseness, coarseness);
+    const DrumConfig c = mapParameters(p, 1.0 / kGridDesignStep_s);
+    const double k = kGridDesignStep_s;
+    auto top = [&](double sine) { return std::asin(std::min(1.0, sine)) / (std::numbers::pi * k); };
+    auto head = [&](const MembraneSpec& m, bool batter) {
+        const double h = Membrane::gridSpacing(m, k, c.kineticReserve(batter));
+        return top(std::sqrt(2.0) * k * std::sqrt(m.gridTension_N_per_m / m.density_kg_per_m2) / h);
+    };
+    const double wires = top(k * std::sqrt(c.snares.gridTension_N / c.snares.linearDensity_kg_per_m) / SnareWires::gridSpacing(c.snares, k));
+    return std::min({ head(c.batter, true), head(c.carry, false), wires });
+}
+
 double strikeSpeedFromVelocity(int midiVelocity, double maxSpeed_m_per_s)
 {
     const int v = std::clamp(midiVelocity, 1, 127);

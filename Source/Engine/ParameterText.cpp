@@ -1,10 +1,13 @@
 #include "ParameterText.h"
 
+#include "DrumConfig.h"
+
 #include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <system_error>
 
 namespace snaresim
@@ -150,12 +153,17 @@ std::string formatValue(const ParameterSpec& spec, double value)
     }
     else
         number = fixed(shown, f.decimals);
+    if (spec.id == ParamId::gridCoarseness) // Quality: what the grids of the number as written carry
+        return number + " (" + fixed(qualityBandwidth_Hz(std::strtod(number.c_str(), nullptr) / f.scale) / 1000.0, 1) + " kHz)";
     return f.unit.empty() ? number : number + " " + f.unit;
 }
 
 std::optional<double> parseValue(const ParameterSpec& spec, std::string_view text, BareNumber bare)
 {
     text = trimmed(text);
+    if (spec.id == ParamId::gridCoarseness && text.ends_with(')'))
+        if (const auto open = text.rfind('('); open != std::string_view::npos) // "2.0 (7.8 kHz)": the number
+            text = trimmed(text.substr(0, open));
     if (spec.kind == ParamKind::toggle || spec.kind == ParamKind::choice)
         for (int i = 0; i < numChoiceNames(spec); ++i)
             if (equalNoCase(choiceName(spec, i), text))

@@ -1,11 +1,15 @@
 // How parameter values are written and read as text (ParameterText.h): one rule for the host,
 // the editor and the command line.
 
+#include "Drum.h"
+#include "DrumConfig.h"
 #include "ParameterText.h"
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <random>
 #include <string>
 
@@ -92,4 +96,34 @@ TEST_CASE("every value's text reads back to that value within the text's precisi
         if (s.kind == ParamKind::toggle || s.kind == ParamKind::choice)
             CHECK(numChoiceNames(s) == (int) s.maxValue + 1);
     }
+}
+
+TEST_CASE("Quality's text names the highest frequency its heads' and wires' grids carry", "[parameters][text]")
+{
+    CHECK(text(ParamId::gridCoarseness, 2.0) == "2.00 (7.8 kHz)");
+    CHECK(read(ParamId::gridCoarseness, "2.00 (7.8 kHz)") == 2.0);
+    double previous = 1.0e9;
+    for (const double c : { 1.0, 1.5, 2.0, 3.0, 4.0 })
+    {
+        // from the drum as built at 48 kHz: each grid's top mode at its highest tension
+        ParameterSet p;
+        p.setClamped(ParamId::gridCoarseness, c);
+        const DrumConfig cfg = makeDrumConfig(p, 48000.0);
+        const Drum drum(cfg);
+        const double k = 1.0 / 48000.0;
+        auto top = [&](double sine) { return std::asin(std::min(1.0, sine)) / (std::numbers::pi * k); };
+        const double batter = top(std::sqrt(2.0) * k * std::sqrt(cfg.batter.gridTension_N_per_m / cfg.batter.density_kg_per_m2)
+                                  / drum.batter().grid().spacing());
+        const double carry = top(std::sqrt(2.0) * k * std::sqrt(cfg.carry.gridTension_N_per_m / cfg.carry.density_kg_per_m2)
+                                 / drum.carry().grid().spacing());
+        // the wires' grid is whole intervals of the wire: at most the spacing asked
+        const double wires = top(k * std::sqrt(cfg.snares.gridTension_N / cfg.snares.linearDensity_kg_per_m)
+                                 / SnareWires::gridSpacing(cfg.snares, k));
+        const double shown = qualityBandwidth_Hz(c);
+        INFO("Quality " << c << ": " << shown << " Hz; batter " << batter << ", carry " << carry << ", wires " << wires);
+        CHECK(shown == Approx(std::min({ batter, carry, wires })).epsilon(1e-9));
+        CHECK(shown < previous); // coarser grids carry less
+        previous = shown;
+    }
+    CHECK(qualityBandwidth_Hz(1.0) > 20000.0); // at the bounds: near the Nyquist frequency
 }
