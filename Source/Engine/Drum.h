@@ -79,8 +79,6 @@ public:
     double sampleRate() const { return cfg.outputRate(); }
     // the rate the physics is simulated at (config().sampleRate_Hz; HostRateInterpolator.h)
     double simulationRate() const { return cfg.sampleRate_Hz; }
-    // host samples between the simulated sound and its interpolation to the host's rate
-    int outputDelay() const { return toHost.delay(); }
 
     // Start a strike with the next free mallet (round robin): speed in m/s (> 0, downward),
     // position as fractions of the radius. Real-time safe.

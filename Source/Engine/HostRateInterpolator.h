@@ -27,7 +27,6 @@ public:
     // the filter's delay in host samples (0 for L = 1)
     int delay() const { return L > 1 ? (taps - 1) / 2 : 0; }
     int length() const { return taps; }
-    const std::vector<double>& coefficients() const { return h; }
 
     // a new simulated sample of each channel (once every L host samples, before phase 0)
     void push(const std::array<double, numChannels>& x) noexcept;

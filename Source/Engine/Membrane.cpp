@@ -14,9 +14,9 @@ double Membrane::gridSpacing(const MembraneSpec& s, double k, double reserve)
     const double T = s.gridTension_N_per_m > 0.0 ? s.gridTension_N_per_m : s.tension_N_per_m;
     const double sigma1 = s.gridSigma1_m2_per_s >= 0.0 ? s.gridSigma1_m2_per_s : s.sigma1_m2_per_s;
     // eq. (39): h^2 >= 2 k^2 T / rho + 8 sigma1 k
-    auto bound = [&](double step) { return std::sqrt((2.0 * step * step * T / s.density_kg_per_m2 + 8.0 * sigma1 * step) / (1.0 - reserve)); };
-    const double design = s.gridTimeStep_s > 0.0 ? std::min(k, s.gridTimeStep_s) : k;
-    return std::max(s.gridCoarseness * bound(design), bound(k));
+    return designedSpacing(s.gridCoarseness, k, s.gridTimeStep_s, [&](double step) {
+        return std::sqrt((2.0 * step * step * T / s.density_kg_per_m2 + 8.0 * sigma1 * step) / (1.0 - reserve));
+    });
 }
 
 Membrane::Membrane(const MembraneSpec& s, double timeStep, double reserve)

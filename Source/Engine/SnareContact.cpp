@@ -223,13 +223,22 @@ SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wire
         if (count == 0)
             continue;
         activeClasses.push_back({ c.size, groupBegin, count, solvedPoints });
-        for (int j = 0; j < c.size; ++j)
-            for (int a = 0; a < count; ++a)
-                activePoints[(size_t) solvedPoints++] = c.pointBegin + j * c.groupCount + (activeGroups[(size_t) (groupBegin + a)] - c.groupBegin);
+        solvedPoints += c.size * count;
     }
     // Most points taking part (a fortissimo strike; or a test's reference, solveEveryPoint):
     // every group is solved in place, without gathering, which is the all-touching case's work.
     const bool whole = solveEveryPoint || 4 * solvedPoints > 3 * n;
+    if (! whole) // the points of the groups taking part, member-major by class
+        for (size_t next = 0; const SizeClass& c : classes)
+        {
+            if (next == activeClasses.size() || activeClasses[next].size != c.size)
+                continue; // none of this class takes part (one class per size, in order)
+            const SizeClass& a = activeClasses[next++];
+            int t = a.pointBegin;
+            for (int j = 0; j < c.size; ++j)
+                for (int g = a.groupBegin; g < a.groupBegin + a.groupCount; ++g)
+                    activePoints[(size_t) t++] = c.pointBegin + j * c.groupCount + (activeGroups[(size_t) g] - c.groupBegin);
+        }
     const int m = whole ? n : solvedPoints;
     lastSolvedPoints = m;
     const int* group = activeGroups.data();

@@ -95,6 +95,7 @@ public:
     // The state a step changes beyond the wires' and the head's next levels (the quadratised
     // psi), saved before a step and put back to solve the same step again (DrumAir).
     void saveTrial() { trialPsi = psiQ; }
+    void restoreTrial() { psiQ = trialPsi; }
 
     // The quadratised solve takes the node groups holding a point that touches at n-1, would
     // touch without contact forces, or holds psi (and the groups holding wire ends); the others
@@ -102,7 +103,6 @@ public:
     void setSolveEveryPoint(bool every) { solveEveryPoint = every; }
     // the points the last quadratised step solved (at most numPoints())
     int solvedPoints() const { return lastSolvedPoints; }
-    void restoreTrial() { psiQ = trialPsi; }
 
     void advance();
     // Lay the wires on the carry head as it is at n and n-1 (snares engaged): every node

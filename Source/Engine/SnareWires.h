@@ -11,7 +11,6 @@
 
 #include "DrumConfig.h"
 
-#include <algorithm>
 #include <vector>
 
 namespace snaresim
@@ -24,12 +23,12 @@ public:
 
     // Grid spacing from eq. (40) for the design tension and sigma1 (before fitting to the length).
     static double minimumSpacing(const SnareSpec& spec, double timeStep_s);
-    // The spacing the grid is built for: minimumSpacing times the coarseness factor.
-    // Below the design rate (SnareSpec::gridTimeStep_s) that of the design step, or the bound.
+    // The spacing the grid is built for: minimumSpacing times the coarseness factor, at the
+    // design step below the design rate (designedSpacing).
     static double gridSpacing(const SnareSpec& spec, double timeStep_s)
     {
-        const double design = spec.gridTimeStep_s > 0.0 ? std::min(timeStep_s, spec.gridTimeStep_s) : timeStep_s;
-        return std::max(spec.gridCoarseness * minimumSpacing(spec, design), minimumSpacing(spec, timeStep_s));
+        return designedSpacing(spec.gridCoarseness, timeStep_s, spec.gridTimeStep_s,
+                               [&](double step) { return minimumSpacing(spec, step); });
     }
 
     int count() const { return numWires; }
