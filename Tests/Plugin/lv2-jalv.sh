@@ -18,9 +18,16 @@ rm -f "$work/jalv.wav"
 export JACK_DEFAULT_SERVER="snaresim-test-$$"
 export JACK_NO_AUDIO_RESERVATION=1
 pids=()
+# Stops the clients before their server (a client whose server is gone can wait on it for
+# long), each given 5 s to end before it is killed.
+stop() {
+    kill "$1" 2>/dev/null || return 0
+    for _ in $(seq 50); do kill -0 "$1" 2>/dev/null || return 0; sleep 0.1; done
+    kill -KILL "$1" 2>/dev/null
+}
 cleanup() {
     exec 3>&-
-    for pid in "${pids[@]}"; do kill "$pid" 2>/dev/null; done
+    for ((i = ${#pids[@]} - 1; i >= 0; i--)); do stop "${pids[i]}"; done
     wait 2>/dev/null
 }
 trap cleanup EXIT
