@@ -293,7 +293,10 @@ double DrumConfig::cavityModesUpTo_Hz() const
 
 DrumConfig::DrumConfig() : DrumConfig(mapParameters(ParameterSet {}, 48000.0)) {}
 
-DrumConfig mapParameters(const ParameterSet& p, double sampleRate_Hz) noexcept
+namespace
+{
+// mapParameters with the grids' coarseness given (qualityBandwidth_Hz's drums).
+DrumConfig mapParametersAt(const ParameterSet& p, double sampleRate_Hz, double coarseness) noexcept
 {
     DrumConfig c { DrumConfig::Unmapped {} };
     c.cavity.model = static_cast<AirModel>(std::lround(p.get(ParamId::airModel))); // none, cavity, airbox: the choices in order
@@ -303,7 +306,6 @@ DrumConfig mapParameters(const ParameterSet& p, double sampleRate_Hz) noexcept
     // (the amplitude falls by 60 dB in T60).
     const double sigma0 = 3.0 * std::log(10.0) / dampingT60(p.get(ParamId::damping));
     const double sigma1 = p.get(ParamId::highDamping);
-    const double coarseness = p.get(ParamId::gridCoarseness);
 
     c.batter.tension_N_per_m = p.get(ParamId::batterTension);
     c.batter.sigma0_per_s = sigma0;
@@ -365,6 +367,12 @@ DrumConfig mapParameters(const ParameterSet& p, double sampleRate_Hz) noexcept
     c.outputGain = std::pow(10.0, p.get(ParamId::outputGain) / 20.0);
     return c;
 }
+} // namespace
+
+DrumConfig mapParameters(const ParameterSet& p, double sampleRate_Hz) noexcept
+{
+    return mapParametersAt(p, sampleRate_Hz, gridCoarsenessFor(p.get(ParamId::bandwidth)));
+}
 
 DrumConfig makeDrumConfig(const ParameterSet& p, double sampleRate_Hz)
 {
@@ -375,9 +383,9 @@ DrumConfig makeDrumConfig(const ParameterSet& p, double sampleRate_Hz)
 
 double qualityBandwidth_Hz(double coarseness) noexcept
 {
-    ParameterSet p;
-    p.setClamped(ParamId::gridCoarseness, coarseness);
-    const DrumConfig c = mapParameters(p, 1.0 / kGridDesignStep_s);
+    if (! (coarseness >= 1.0))
+        return std::isnan(coarseness) ? coarseness : qualityBandwidth_Hz(1.0);
+    const DrumConfig c = mapParametersAt(ParameterSet {}, 1.0 / kGridDesignStep_s, coarseness);
     const double k = kGridDesignStep_s;
     auto top = [&](double sine) { return std::asin(std::min(1.0, sine)) / (std::numbers::pi * k); };
     auto head = [&](const MembraneSpec& m, bool batter) {
@@ -386,6 +394,15 @@ double qualityBandwidth_Hz(double coarseness) noexcept
     };
     const double wires = top(k * std::sqrt(c.snares.gridTension_N / c.snares.linearDensity_kg_per_m) / SnareWires::gridSpacing(c.snares, k));
     return std::min({ head(c.batter, true), head(c.carry, false), wires });
+}
+
+double gridCoarsenessFor(double bandwidth_Hz) noexcept
+{
+    static const double S = std::sin( // computed once, off the audio thread (by the first drum's build)
+        std::numbers::pi * kGridDesignStep_s * qualityBandwidth_Hz(1.0));
+    const double f = std::clamp(bandwidth_Hz, 1.0, 0.5 / kGridDesignStep_s);
+    const double coarseness = std::round(1.0e6 * S / std::sin(std::numbers::pi * kGridDesignStep_s * f)) * 1.0e-6;
+    return std::max(1.0, std::isfinite(coarseness) ? coarseness : 1.0);
 }
 
 double strikeSpeedFromVelocity(int midiVelocity, double maxSpeed_m_per_s)

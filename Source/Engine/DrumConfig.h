@@ -247,12 +247,18 @@ DrumConfig makeDrumConfig(const ParameterSet& params, double sampleRate_Hz);
 // taken from the result (Drum::applyLive).
 DrumConfig mapParameters(const ParameterSet& params, double sampleRate_Hz) noexcept;
 
-// What a Quality (grid coarseness) carries: the highest frequency of the heads' and the wires'
-// grids as the schema's default drum builds them at 48 kHz (their design rate), each at its
-// highest tension: for a head sin(pi f k) = sqrt(2) k c / h (the 5-point Laplacian's top mode,
-// eq. 39's scheme), for the wires sin(pi f k) = k c_s / h_s; the lowest of the three. Quality 1
-// carries about 21 kHz, 2 about 7.8 kHz, 4 about 3.8 kHz.
+// What a grid coarseness (the spacing as a multiple of the stability bound, eq. 39 and 40)
+// carries: the highest frequency of the heads' and the wires' grids as the schema's default
+// drum builds them at 48 kHz (their design rate), each at its highest tension: for a head
+// sin(pi f k) = sqrt(2) k c / h (the 5-point Laplacian's top mode, eq. 39's scheme), for the
+// wires sin(pi f k) = k c_s / h_s; the lowest of the three. Coarseness 1 carries about 21 kHz,
+// 2 about 7.8 kHz, 4 about 3.8 kHz.
 double qualityBandwidth_Hz(double coarseness) noexcept;
+// Its inverse, the grids' coarseness for the Quality parameter's bandwidth: every spacing is
+// proportional to the coarseness, so sin(pi f k) = S / coarseness with S that of coarseness 1.
+// At least 1 (the stability bound); taken to a millionth, so a bandwidth read from
+// qualityBandwidth_Hz gives its coarseness exactly.
+double gridCoarsenessFor(double bandwidth_Hz) noexcept;
 
 // Documented MIDI velocity curve: speed = maxSpeed * 10^(-1.6 (127 - v) / 126), v in 1..127,
 // so 127 -> maxSpeed and 1 -> maxSpeed / 40 (about 32 dB of strike speed).

@@ -1,13 +1,11 @@
 #include "ParameterText.h"
 
-#include "DrumConfig.h"
-
 #include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
+#include <stdexcept>
 #include <system_error>
 
 namespace snaresim
@@ -86,6 +84,11 @@ ValueFormat valueFormat(const ParameterSpec& spec)
         f.scale = 1000.0;
         f.unit = "g";
     }
+    else if (spec.unit == "Hz" && spec.minValue >= 1000.0) // and frequencies of kilohertz in kHz
+    {
+        f.scale = 1.0e-3;
+        f.unit = "kHz";
+    }
 
     if (spec.kind != ParamKind::continuous)
         return f;
@@ -153,17 +156,12 @@ std::string formatValue(const ParameterSpec& spec, double value)
     }
     else
         number = fixed(shown, f.decimals);
-    if (spec.id == ParamId::gridCoarseness) // Quality: what the grids of the number as written carry
-        return number + " (" + fixed(qualityBandwidth_Hz(std::strtod(number.c_str(), nullptr) / f.scale) / 1000.0, 1) + " kHz)";
     return f.unit.empty() ? number : number + " " + f.unit;
 }
 
 std::optional<double> parseValue(const ParameterSpec& spec, std::string_view text, BareNumber bare)
 {
     text = trimmed(text);
-    if (spec.id == ParamId::gridCoarseness && text.ends_with(')'))
-        if (const auto open = text.rfind('('); open != std::string_view::npos) // "2.0 (7.8 kHz)": the number
-            text = trimmed(text.substr(0, open));
     if (spec.kind == ParamKind::toggle || spec.kind == ParamKind::choice)
         for (int i = 0; i < numChoiceNames(spec); ++i)
             if (equalNoCase(choiceName(spec, i), text))
@@ -190,6 +188,18 @@ std::optional<double> parseValue(const ParameterSpec& spec, std::string_view tex
     if (unit == f.schemaUnit || unit == spec.unit)
         return number;
     return std::nullopt;
+}
+
+std::optional<std::pair<ParamId, double>> readOldKey(std::string_view key, std::string_view text)
+{
+    if (! migrateOldKey(key, 0.0))
+        return std::nullopt;
+    text = trimmed(text);
+    double number = 0.0;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), number);
+    if (text.empty() || ec != std::errc {} || end != text.data() + text.size() || ! std::isfinite(number))
+        throw std::invalid_argument("'" + std::string(text) + "' is not a number");
+    return migrateOldKey(key, number);
 }
 
 } // namespace snaresim

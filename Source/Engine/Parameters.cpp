@@ -1,5 +1,7 @@
 #include "Parameters.h"
 
+#include "DrumConfig.h" // qualityBandwidth_Hz: the old Quality's migration
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -66,8 +68,9 @@ constexpr std::array<ParameterSpec, kNumParameters> kSpecs {{
       "Distance of the top microphone from the drum's axis, as a fraction of the radius", C, "", "output" },
     { P::outputGain, "output_gain", "Output level", "dB", -48.0, 12.0, 0.0, S::linear, N::coefficients,
       "Output level", C, "", "output" },
-    { P::gridCoarseness, "grid_coarseness", "Quality (grid coarseness)", "", 1.0, 4.0, 2.0, S::linear, N::newGrid,
-      "Head and snare-wire grid spacing as a multiple of the stability bounds (eq. 39, 40) at 48 kHz, the same grids at every rate where they are stable; larger is cheaper and duller", C, "", "model" },
+    // The default is Quality 2's bandwidth, qualityBandwidth_Hz(2): its grids to the millionth.
+    { P::bandwidth, "bandwidth", "Quality (bandwidth)", "Hz", 3750.0, 21100.0, 7839.5127, S::logarithmic, N::newGrid,
+      "The highest frequency the heads' and snare wires' grids carry, the same at every rate from 44.1 kHz (lower rates carry less); their cost grows as its square. Lower is cheaper and duller; 21.1 kHz is the finest grid the stability bounds (eq. 39, 40) allow at 48 kHz", C, "", "model" },
     { P::snareSolver, "snare_solver", "Snare collision solver", "", 0.0, 1.0, 0.0, S::linear, N::newModel,
       "Snare/head collisions: quadratised (one linear solve per sample, real time) or Newton (the paper's eq. 50, iterative)",
       K, "quadratised|newton", "model" },
@@ -144,11 +147,13 @@ constexpr bool toggleAndChoiceNamesComplete()
 static_assert(toggleAndChoiceNamesComplete(), "toggles and choices name every value from 0");
 
 // Version 0 (no version attribute) and 1: the first table, where the damping was the batter's
-// T60 and two keys had other names.
-constexpr std::array<ParameterMigration, 3> kMigrations {{
+// T60 and two keys had other names. Versions 0 to 2: Quality was the grids' coarseness, a
+// multiple of their stability bounds at 48 kHz; it is the bandwidth those grids carry.
+constexpr std::array<ParameterMigration, 4> kMigrations {{
     { 2, "batter_decay", P::damping, &dampingFromT60 },
     { 2, "batter_high_damping", P::highDamping, nullptr },
     { 2, "listen_position", P::micTopPosition, nullptr },
+    { 3, "grid_coarseness", P::bandwidth, &qualityBandwidth_Hz },
 }};
 
 constexpr double kLongestT60_s = 4.0, kShortestT60_s = 0.15;
@@ -176,6 +181,13 @@ std::optional<std::pair<ParamId, double>> migrateParameter(int stateVersion, std
     if (const auto id = findParameter(key))
         return std::pair { *id, value };
     return std::nullopt;
+}
+
+std::optional<std::pair<ParamId, double>> migrateOldKey(std::string_view key, double value)
+{
+    if (findParameter(key))
+        return std::nullopt;
+    return migrateParameter(0, key, value);
 }
 
 double dampingT60(double dampingPercent)

@@ -46,7 +46,7 @@ enum class ParamId : std::size_t
     micTopPosition,
     outputGain,
     // model
-    gridCoarseness,
+    bandwidth,
     snareSolver,
     // the air box (appended: hosts that number parameters keep their automation)
     airLoss,
@@ -148,7 +148,7 @@ private:
 
 // Saved states: the version written now, and how older versions' parameters map onto today's
 // (a renamed key, its value converted). A key that is neither today's nor migrated is ignored.
-inline constexpr int kStateVersion = 2;
+inline constexpr int kStateVersion = 3;
 struct ParameterMigration
 {
     int beforeVersion;            // applies to states older than this
@@ -159,6 +159,9 @@ struct ParameterMigration
 std::span<const ParameterMigration> parameterMigrations();
 // Today's ID and value for a key read from a state of stateVersion; empty when unknown.
 std::optional<std::pair<ParamId, double>> migrateParameter(int stateVersion, std::string_view key, double value);
+// Today's ID and value for a key that is no longer today's (any version's migration); empty
+// for today's keys and unknown ones. Preset files and --set read old keys with it.
+std::optional<std::pair<ParamId, double>> migrateOldKey(std::string_view key, double value);
 
 // The damping control's law: the heads' lowest modes ring for
 // T60 = 4 s * (0.15 / 4)^(d / 100), so 0 % gives 4 s and 100 % gives 0.15 s.

@@ -2,9 +2,11 @@
 
 #include "ParameterText.h"
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <fstream>
+#include <optional>
 #include <stdexcept>
 
 namespace snaresim
@@ -84,14 +86,30 @@ PresetFile parsePresetFile(std::string_view text)
             named = true;
             continue;
         }
-        const auto id = findParameter(key);
-        if (! id)
-            fail(lineNo, "unknown parameter " + quoted(key) + " (see snaresim-render --list-params)");
+        // Today's key, or an older schema's, its value migrated (a preset of then is still its drum).
+        auto id = findParameter(key);
+        std::optional<double> v;
+        if (id)
+            v = parseValue(spec(*id), value, BareNumber::schemaUnit);
+        else
+        {
+            std::optional<std::pair<ParamId, double>> old;
+            try
+            {
+                old = readOldKey(key, value);
+            }
+            catch (const std::invalid_argument&)
+            {
+                fail(lineNo, quoted(key) + ": cannot read the value " + quoted(value));
+            }
+            if (! old)
+                fail(lineNo, "unknown parameter " + quoted(key) + " (see snaresim-render --list-params)");
+            id = old->first;
+            v = std::clamp(old->second, spec(*id).minValue, spec(*id).maxValue);
+        }
         if (seen[(std::size_t) *id])
             fail(lineNo, "parameter " + quoted(key) + " is given twice");
         seen[(std::size_t) *id] = true;
-        const auto& s = spec(*id);
-        const auto v = parseValue(s, value, BareNumber::schemaUnit);
         if (! v)
             fail(lineNo, quoted(key) + ": cannot read the value " + quoted(value));
         try

@@ -154,12 +154,30 @@ ParameterOverride parseOverride(std::string_view text)
 
     const auto key = text.substr(0, equals);
     const auto id = findParameter(key);
-    if (! id)
-        fail("--set: unknown parameter " + inQuotes(key) + " (see --list-params)");
-
     ParameterOverride result;
-    result.id = *id;
-    result.value = parseParameterValue(spec(*id), text.substr(equals + 1));
+    if (id)
+    {
+        result.id = *id;
+        result.value = parseParameterValue(spec(*id), text.substr(equals + 1));
+    }
+    else
+    {
+        // An older schema's key: its value migrated as a saved state's is (grid_coarseness=2 is
+        // Quality's 7.84 kHz), clamped into today's range.
+        std::optional<std::pair<ParamId, double>> old;
+        try
+        {
+            old = readOldKey(key, text.substr(equals + 1));
+        }
+        catch (const std::invalid_argument& e)
+        {
+            fail("--set " + std::string(key) + ": " + e.what());
+        }
+        if (! old)
+            fail("--set: unknown parameter " + inQuotes(key) + " (see --list-params)");
+        result.id = old->first;
+        result.value = std::clamp(old->second, spec(old->first).minValue, spec(old->first).maxValue);
+    }
     result.text = std::string(text);
     return result;
 }

@@ -23,7 +23,7 @@ namespace
 DrumConfig productDrum(double quality, bool snares, HeadPrecision precision)
 {
     ParameterSet p;
-    p.set(ParamId::gridCoarseness, quality);
+    p.set(ParamId::bandwidth, qualityBandwidth_Hz(quality));
     p.set(ParamId::snaresEngaged, snares ? 1.0 : 0.0);
     p.set(ParamId::headPrecision, precision == HeadPrecision::single_precision ? 1.0 : 0.0);
     return makeDrumConfig(p, 48000.0);

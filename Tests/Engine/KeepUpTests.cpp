@@ -18,7 +18,7 @@ namespace
 ParameterSet fastDrum()
 {
     ParameterSet p;
-    p.set(ParamId::gridCoarseness, 3.0);
+    p.set(ParamId::bandwidth, qualityBandwidth_Hz(3.0));
     p.set(ParamId::snareCount, 5.0);
     return p;
 }

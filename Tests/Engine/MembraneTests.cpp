@@ -125,7 +125,7 @@ TEST_CASE("the product's grids keep the low batter modes at the Bessel frequenci
     p.set(ParamId::headPrecision, precision);
     p.set(ParamId::snaresEngaged, 0.0);
     p.set(ParamId::airModel, 0.0);
-    p.set(ParamId::gridCoarseness, quality);
+    p.set(ParamId::bandwidth, qualityBandwidth_Hz(quality));
     DrumConfig cfg = makeDrumConfig(p, 48000.0).lossless();
     Drum drum(cfg);
     const auto x = batterRing(cfg, 1u << 17);

@@ -61,7 +61,7 @@ TEST_CASE("the quality and solver settings reach the heads, the wires and the sn
 {
     ParameterSet p;
     p.set(ParamId::snareSolver, 1.0);
-    p.set(ParamId::gridCoarseness, 3.0);
+    p.set(ParamId::bandwidth, qualityBandwidth_Hz(3.0));
     const DrumConfig c = makeDrumConfig(p, 48000.0);
     CHECK(c.snares.scheme == CollisionScheme::newton);
     CHECK(c.carry.gridCoarseness == 3.0);
@@ -81,7 +81,7 @@ TEST_CASE("the quality and solver settings reach the heads, the wires and the sn
     };
     const Drum coarse(c);
     checkWireGrid(c, coarse);
-    p.set(ParamId::gridCoarseness, 1.0);
+    p.set(ParamId::bandwidth, qualityBandwidth_Hz(1.0));
     const DrumConfig f = makeDrumConfig(p, 48000.0);
     const Drum fine(f);
     checkWireGrid(f, fine);
@@ -231,7 +231,7 @@ TEST_CASE("a change the schema says rebuilds the model changes the grids or the 
 
 TEST_CASE("old states' keys migrate as the schema says", "[parameters]")
 {
-    CHECK(kStateVersion == 2);
+    CHECK(kStateVersion == 3);
     const auto decay = migrateParameter(1, "batter_decay", 4.0);
     REQUIRE(decay.has_value());
     CHECK(decay->first == ParamId::damping);
@@ -241,6 +241,9 @@ TEST_CASE("old states' keys migrate as the schema says", "[parameters]")
     CHECK_FALSE(migrateParameter(2, "batter_decay", 1.0).has_value()); // today's states have no such key
     CHECK(migrateParameter(2, "damping", 40.0) == std::pair { ParamId::damping, 40.0 });
     CHECK_FALSE(migrateParameter(1, "no_such_key", 1.0).has_value());
+    // Quality was the grids' coarseness (versions 0 to 2): its bandwidth now
+    CHECK(migrateParameter(2, "grid_coarseness", 2.0) == std::pair { ParamId::bandwidth, qualityBandwidth_Hz(2.0) });
+    CHECK_FALSE(migrateParameter(3, "grid_coarseness", 2.0).has_value());
     // The damping law and its inverse agree.
     for (double d : { 0.0, 12.5, 25.0, 80.0, 100.0 })
         CHECK(dampingFromT60(dampingT60(d)) == Approx(d).margin(1e-9));

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <stdexcept>
 #include <string>
 
 using namespace snaresim;
@@ -98,16 +99,17 @@ TEST_CASE("every value's text reads back to that value within the text's precisi
     }
 }
 
-TEST_CASE("Quality's text names the highest frequency its heads' and wires' grids carry", "[parameters][text]")
+TEST_CASE("Quality is the highest frequency the heads' and wires' grids carry, in kHz", "[parameters][text]")
 {
-    CHECK(text(ParamId::gridCoarseness, 2.0) == "2.00 (7.8 kHz)");
-    CHECK(read(ParamId::gridCoarseness, "2.00 (7.8 kHz)") == 2.0);
+    CHECK(text(ParamId::bandwidth, spec(ParamId::bandwidth).defaultValue) == "7.8 kHz");
+    CHECK(read(ParamId::bandwidth, "7.8 kHz") == Approx(7800.0));
+    CHECK(read(ParamId::bandwidth, "12") == Approx(12000.0)); // a bare number in the written unit
     double previous = 1.0e9;
-    for (const double c : { 1.0, 1.5, 2.0, 3.0, 4.0 })
+    for (const double asked : { 21100.0, 15000.0, 10000.0, spec(ParamId::bandwidth).defaultValue, 5000.0, 3750.0 })
     {
         // from the drum as built at 48 kHz: each grid's top mode at its highest tension
         ParameterSet p;
-        p.setClamped(ParamId::gridCoarseness, c);
+        p.set(ParamId::bandwidth, asked);
         const DrumConfig cfg = makeDrumConfig(p, 48000.0);
         const Drum drum(cfg);
         const double k = 1.0 / 48000.0;
@@ -119,11 +121,40 @@ TEST_CASE("Quality's text names the highest frequency its heads' and wires' grid
         // the wires' grid is whole intervals of the wire: at most the spacing asked
         const double wires = top(k * std::sqrt(cfg.snares.gridTension_N / cfg.snares.linearDensity_kg_per_m)
                                  / SnareWires::gridSpacing(cfg.snares, k));
-        const double shown = qualityBandwidth_Hz(c);
-        INFO("Quality " << c << ": " << shown << " Hz; batter " << batter << ", carry " << carry << ", wires " << wires);
-        CHECK(shown == Approx(std::min({ batter, carry, wires })).epsilon(1e-9));
-        CHECK(shown < previous); // coarser grids carry less
-        previous = shown;
+        const double carried = std::min({ batter, carry, wires });
+        INFO("asked " << asked << " Hz: batter " << batter << ", carry " << carry << ", wires " << wires);
+        // what the finest stable grids carry caps it; the coarseness is taken to a millionth
+        CHECK(carried == Approx(std::min(asked, qualityBandwidth_Hz(1.0))).epsilon(2e-6));
+        CHECK(carried < previous); // less bandwidth, coarser grids
+        CHECK(cfg.batter.gridCoarseness >= 1.0);
+        previous = carried;
     }
-    CHECK(qualityBandwidth_Hz(1.0) > 20000.0); // at the bounds: near the Nyquist frequency
+    CHECK(qualityBandwidth_Hz(1.0) > 20000.0); // at the stability bounds: near the Nyquist frequency
+    CHECK(qualityBandwidth_Hz(1.0) < spec(ParamId::bandwidth).maxValue);
+}
+
+TEST_CASE("Quality's old coarseness and its bandwidth give the same grids", "[parameters][text]")
+{
+    // States and preset files of the old Quality (grid_coarseness) migrate to the bandwidth it
+    // carried, which builds the grids of that coarseness exactly.
+    for (const double c : { 1.0, 1.25, 1.5, 2.0, 2.5, 3.0, 4.0 })
+    {
+        INFO("coarseness " << c);
+        CHECK(gridCoarsenessFor(qualityBandwidth_Hz(c)) == c);
+        CHECK(gridCoarsenessFor((double) (float) qualityBandwidth_Hz(c)) == c); // as a host's float holds it
+        const auto migrated = migrateParameter(2, "grid_coarseness", c);
+        REQUIRE(migrated);
+        CHECK(migrated->first == ParamId::bandwidth);
+        CHECK(migrated->second == qualityBandwidth_Hz(c));
+        const auto old = readOldKey("grid_coarseness", std::to_string(c));
+        REQUIRE(old);
+        CHECK(old->second == Approx(qualityBandwidth_Hz(c)).epsilon(1e-12));
+    }
+    CHECK(gridCoarsenessFor(spec(ParamId::bandwidth).defaultValue) == 2.0);
+    CHECK(gridCoarsenessFor(spec(ParamId::bandwidth).maxValue) == 1.0);
+    CHECK(gridCoarsenessFor(std::nan("")) == 1.0);
+    CHECK(! migrateParameter(3, "grid_coarseness", 2.0)); // today's states have no such key
+    CHECK(! readOldKey("bandwidth", "7000"));              // today's key is not an old one
+    CHECK(! readOldKey("no_such_key", "1"));
+    CHECK_THROWS_AS(readOldKey("grid_coarseness", "fine"), std::invalid_argument);
 }

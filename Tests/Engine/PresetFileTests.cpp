@@ -1,6 +1,7 @@
 // Preset files (PresetFile.h): what they read, what they refuse, and that writing and reading
 // back gives every value exactly; the factory presets, read from Resources/Presets.
 
+#include "DrumConfig.h"
 #include "ParameterText.h"
 #include "PresetFile.h"
 #include "Presets.h"
@@ -62,6 +63,18 @@ TEST_CASE("preset files: values in the schema's unit, the written unit, toggles 
     CHECK(params.get(ParamId::carryTension) == spec(ParamId::carryTension).defaultValue);
 }
 
+TEST_CASE("preset files: an older schema's key migrates as a saved state's does", "[presets]")
+{
+    // Quality was the grids' coarseness: 3 is the bandwidth those grids carry.
+    const auto params = parametersOf(parsePresetFile("name = Old\ngrid_coarseness = 3\n"));
+    CHECK(params.get(ParamId::bandwidth) == qualityBandwidth_Hz(3.0));
+    CHECK(gridCoarsenessFor(params.get(ParamId::bandwidth)) == 3.0);
+    // below the old range (1 to 4): its finest grids
+    CHECK(parametersOf(parsePresetFile("name = Old\ngrid_coarseness = 0.5\n")).get(ParamId::bandwidth)
+          == qualityBandwidth_Hz(1.0));
+    CHECK_THROWS_AS(parsePresetFile("name = Old\ngrid_coarseness = 3\nbandwidth = 5000 Hz\n"), PresetFileError); // twice
+}
+
 TEST_CASE("preset files: bad files are refused with the line that is wrong", "[presets]")
 {
     const std::vector<std::pair<std::string, std::string>> bad {
@@ -76,6 +89,7 @@ TEST_CASE("preset files: bad files are refused with the line that is wrong", "[p
         { "name = A\ndamping = loud\n", "line 2: 'damping': cannot read the value 'loud'" },
         { "name = A\ndamping = 20 N\n", "line 2: 'damping': cannot read" },
         { "name = A\ndamping = nan\n", "line 2:" },
+        { "name = A\ngrid_coarseness = fine\n", "line 2: 'grid_coarseness': cannot read the value 'fine'" },
         { "name = A\nsnare_count = 12.5\n", "line 2:" },
         { "name = A\nsnare_solver = fastest\n", "line 2:" },
         { std::string("name = A\n\0\x01\x02", 12), "binary" },

@@ -27,7 +27,7 @@ inline DrumConfig section52Config(AirModel model, ParameterSet p = {})
     p.set(ParamId::snareCount, 7.0);
     p.set(ParamId::strikeSpeedMax, 5.0);
     p.set(ParamId::malletMass, 0.028);
-    p.set(ParamId::gridCoarseness, 1.0);
+    p.set(ParamId::bandwidth, qualityBandwidth_Hz(1.0));
     p.set(ParamId::snareSolver, 1.0);
     p.set(ParamId::headPrecision, 0.0); // the reference: energy to double round-off
     DrumConfig cfg = makeDrumConfig(p, 44100.0).lossless();

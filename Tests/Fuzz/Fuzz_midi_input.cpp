@@ -22,7 +22,7 @@ SnareSimAudioProcessor& processor()
         auto* p = new SnareSimAudioProcessor();
         // A coarse, cheap drum: the fuzzer is after the event handling, not the physics.
         auto& state = p->getValueTreeState();
-        for (const auto& [id, value] : { std::pair { "grid_coarseness", 4.0f }, std::pair { "snare_count", 4.0f } })
+        for (const auto& [id, value] : { std::pair { "bandwidth", 3750.0f }, std::pair { "snare_count", 4.0f } })
             if (auto* param = state.getParameter (id))
                 param->setValueNotifyingHost (param->convertTo0to1 (value));
         p->setRateAndBufferSizeDetails (48000.0, 512);

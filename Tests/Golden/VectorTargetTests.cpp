@@ -160,7 +160,7 @@ TEST_CASE("each vector target plays the snare drum's strikes within their just-n
         CHECK(alike(m, baseline));
     }
     // The comparison tells drums apart: Quality 1 (finer grids) is not the same drum.
-    const auto finer = meanFeatures(dir, environmentOf("baseline"), 6, { "--set", "grid_coarseness=1" });
+    const auto finer = meanFeatures(dir, environmentOf("baseline"), 6, { "--set", "bandwidth=21100" });
     INFO("Quality 1: " << describe(finer));
     CHECK_FALSE(alike(finer, baseline));
 }

@@ -4,7 +4,7 @@
 // threads. Every test runs once per format ([vst3] and [lv2]); the strictness pass (in the
 // manner of pluginval, which Debian does not package) is tagged [strict].
 //
-// Most renders use grid_coarseness 3 and 5 snare wires (fastSettings): the engine then runs
+// Most renders use Quality 5.1 kHz (coarseness 3) and 5 snare wires (fastSettings): the engine then runs
 // faster than real time, and what these tests check does not depend on the detail.
 
 #define CATCH_CONFIG_RUNNER
@@ -126,7 +126,7 @@ void settle (juce::AudioPluginInstance& plugin, double rate = sampleRate, int bl
 
 void fastSettings (juce::AudioPluginInstance& plugin, double rate = sampleRate, int block = blockSize)
 {
-    set (plugin, ParamId::gridCoarseness, 3.0);
+    set (plugin, ParamId::bandwidth, 5093.8628);
     set (plugin, ParamId::snareCount, 5.0);
     settle (plugin, rate, block);
 }
@@ -583,8 +583,8 @@ void checkRatesAndBlockSizes (Format format)
         CHECK (covered < request.numSamples);
         CHECK (covered + sizes.back() >= request.numSamples);
         // Whatever the blocks, the engine's drum at this rate with the values the plug-in holds
-        // (fastSettings: grid coarseness 3 and 5 wires), sample for sample.
-        CHECK (held.get (ParamId::gridCoarseness) == Approx (3.0).epsilon (1.0e-6));
+        // (fastSettings: Quality 5.1 kHz and 5 wires), sample for sample.
+        CHECK (held.get (ParamId::bandwidth) == Approx (5093.8628).epsilon (1.0e-6));
         CHECK (held.get (ParamId::snareCount) == 5.0);
         CHECK (r.samples == engineRender (held, rate, request.numSamples, 3, 100));
     }

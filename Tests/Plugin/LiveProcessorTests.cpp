@@ -173,7 +173,7 @@ TEST_CASE ("damping raised while ringing shortens the ring", "[processor][live]"
     CHECK (tail (true) < 0.5 * tail (false));
 }
 
-TEST_CASE ("snare_count and grid_coarseness rebuild the model in the background and crossfade", "[processor][model]")
+TEST_CASE ("snare_count and Quality rebuild the model in the background and crossfade", "[processor][model]")
 {
     SnareSimAudioProcessor proc;
     fastSettings (proc);
@@ -184,7 +184,7 @@ TEST_CASE ("snare_count and grid_coarseness rebuild the model in the background 
     const auto strike = render (proc, 256, 2400, { { 0, note (110) } });
 
     set (proc, ParamId::snareCount, 8.0);
-    set (proc, ParamId::gridCoarseness, 2.5);
+    set (proc, ParamId::bandwidth, 6000.0);
     std::vector<float> during;
     const auto until = std::chrono::steady_clock::now() + std::chrono::seconds (30);
     while (proc.getModelSwapCount() == swaps && std::chrono::steady_clock::now() < until)
@@ -206,11 +206,11 @@ TEST_CASE ("snare_count and grid_coarseness rebuild the model in the background 
     CHECK (maxStep <= strike.maxStep);
     CHECK (rms (during, 0, 256) > 1.0e-4);     // it was ringing when the new model came
     CHECK (proc.getDrum()->config().snares.count == 8);
-    CHECK (proc.getDrum()->config().batter.gridCoarseness == Approx (2.5));
+    CHECK (proc.getDrum()->config().batter.gridCoarseness == Approx (snaresim::gridCoarsenessFor (6000.0)));
     CHECK_FALSE (proc.usedFallbackParameters());
 
     // The new model plays: silent since it came, it sounds as a new drum of 8 wires at
-    // Quality 2.5 would.
+    // Quality 6 kHz would.
     const auto after = render (proc, 256, 4800, { { 0, note (110) } });
     CHECK (after.allFinite);
     CHECK (after.peak > 1.0e-4f);
@@ -443,7 +443,8 @@ TEST_CASE ("a version-1 state loads with its values mapped", "[processor][state]
         CHECK (p.get (ParamId::damping) == Approx (100.0 * std::log (1.5 / 4.0) / std::log (0.15 / 4.0)).epsilon (1e-5));
         CHECK (p.get (ParamId::highDamping) == Approx (0.002).epsilon (1e-5));
         CHECK (p.get (ParamId::micTopPosition) == Approx (0.7).epsilon (1e-6));
-        CHECK (p.get (ParamId::gridCoarseness) == Approx (2.0));
+        CHECK (p.get (ParamId::bandwidth) == Approx (snaresim::qualityBandwidth_Hz (2.0))); // Quality 2 was coarseness 2 (a float here)
+        CHECK (snaresim::gridCoarsenessFor (p.get (ParamId::bandwidth)) == 2.0);
         CHECK (p.get (ParamId::outputGain) == Approx (12.0));
         CHECK (p.get (ParamId::snareCount) == 1.0);
         CHECK (p.get (ParamId::malletMass) == Approx (0.028));

@@ -1,7 +1,7 @@
 // Several instances of the built VST3 in one host process, each playing the fortissimo roll,
 // all on one core: what a session with more than one snare asks of a machine.
 //
-//   snaresim_multi_instance_bench [--instances N] [--quality Q] [--sample-rate HZ] [--block N]
+//   snaresim_multi_instance_bench [--instances N] [--quality Q (coarseness 1-4)] [--sample-rate HZ] [--block N]
 //                                 [--repeats N] [--short]
 //
 // Loads the bundle N times (default 4) through JUCE's VST3 host, pins the process to one CPU and
@@ -15,6 +15,7 @@
 #include "PluginHostHarness.h"
 
 #include "Benchmark.h" // the renderer's roll
+#include "DrumConfig.h"
 #include "Parameters.h"
 
 #include <algorithm>
@@ -94,17 +95,19 @@ Options parse(int argc, char** argv)
     return o;
 }
 
-// The host's normalised value of a linear parameter (VST3 passes the plug-in's own 0..1 range).
+// Quality as the grids' coarseness q (1 to 4): its bandwidth (qualityBandwidth_Hz) as the host's
+// normalised value of the logarithmic parameter (VST3 passes the plug-in's own 0..1 range).
 void setQuality(juce::AudioPluginInstance& plugin, double q)
 {
-    const auto& spec = snaresim::spec(snaresim::ParamId::gridCoarseness);
+    const auto& spec = snaresim::spec(snaresim::ParamId::bandwidth);
     auto* p = snaresim::testhost::findParameter(plugin, juce::String(std::string(spec.name)));
     if (p == nullptr)
     {
         std::fprintf(stderr, "snaresim_multi_instance_bench: the plug-in has no parameter \"%s\"\n", std::string(spec.name).c_str());
         std::exit(1);
     }
-    p->setValue((float) ((q - spec.minValue) / (spec.maxValue - spec.minValue)));
+    const double f = std::clamp(snaresim::qualityBandwidth_Hz(q), spec.minValue, spec.maxValue);
+    p->setValue((float) (std::log(f / spec.minValue) / std::log(spec.maxValue / spec.minValue)));
 }
 } // namespace
 

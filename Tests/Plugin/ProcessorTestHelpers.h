@@ -42,7 +42,7 @@ inline void prepare (juce::AudioProcessor& proc, double sampleRate, int blockSiz
 // Coarse grid and few wires: faster than real time, for tests where detail does not matter.
 inline void fastSettings (SnareSimAudioProcessor& proc)
 {
-    set (proc, ParamId::gridCoarseness, 3.0);
+    set (proc, ParamId::bandwidth, 5093.8628);
     set (proc, ParamId::snareCount, 5.0);
 }
 

@@ -3,6 +3,7 @@
 // seed corpus replayed through it (Tests/Fuzz, here in every build).
 
 #include "CommandLine.h"
+#include "DrumConfig.h"
 #include "EngineSetup.h"
 #include "Errors.h"
 
@@ -184,6 +185,11 @@ TEST_CASE("parameter values in --set: numbers, choice names, whole numbers where
     CHECK(errorOf(playable({ "--set", "mallet_mass=heavy" })) == "--set mallet_mass: 'heavy' is not a number");
     CHECK(errorOf(playable({ "--set", "mallet_mass" })) == "--set: 'mallet_mass' is not ID=VALUE (see --list-params)");
     CHECK(errorOf(playable({ "--set", "nope=1" })) == "--set: unknown parameter 'nope' (see --list-params)");
+    // an older schema's key, its value migrated: Quality's old coarseness 3 is its bandwidth
+    const auto old = jobOf(playable({ "--set", "grid_coarseness=3" })).overrides.at(0);
+    CHECK(old.id == snaresim::ParamId::bandwidth);
+    CHECK(old.value == snaresim::qualityBandwidth_Hz(3.0));
+    CHECK(errorOf(playable({ "--set", "grid_coarseness=fine" })) == "--set grid_coarseness: 'fine' is not a number");
 }
 
 TEST_CASE("the values of --set are read by the schema text rule: units, names of toggles and choices", "[renderer][command-line]")

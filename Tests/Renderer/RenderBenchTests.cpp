@@ -1,6 +1,6 @@
 // snaresim-render --bench: the timing report (keys and sane values, never a time limit), the
 // block size, the scenarios, --bench-short, and the options it refuses.
-// Coarse grids (grid_coarseness=2 or 3) keep the renders quick.
+// Coarse grids (Quality at 7.8 or 5.1 kHz: bandwidth=7839.5127 or 5093.8628) keep the renders quick.
 
 #include "RendererTestSupport.h"
 
@@ -57,7 +57,7 @@ juce::var benchJson(const TempDir& dir, const std::vector<std::string>& args)
 TEST_CASE("bench: --json reports the block timings with sane values", "[renderer][bench]")
 {
     TempDir dir;
-    const auto json = benchJson(dir, { "--seconds", "0.25", "--block-size", "32", "--set", "grid_coarseness=2" });
+    const auto json = benchJson(dir, { "--seconds", "0.25", "--block-size", "32", "--set", "bandwidth=7839.5127" });
 
     // 0.25 s at 48 kHz in blocks of 32 samples; the default scenario strikes once, at 0.
     CHECK(number(json, "samples") == 12000);
@@ -89,11 +89,11 @@ TEST_CASE("bench: --json reports the block timings with sane values", "[renderer
     CHECK(number(json, "realtime_factor_slowest_run") > 0.0);
     CHECK(number(json, "realtime_factor_slowest_run") <= number(json, "realtime_factor"));
 
-    // The model's size: the default drum's at grid_coarseness=2, 48 kHz. Each head's spacing is
+    // The model's size: the default drum's at its default Quality, 48 kHz. Each head's spacing is
     // twice the bound of eq. (39) for the largest tension and sigma1 the controls allow, widened
     // for the cavity's reserve (Membrane::gridSpacing); every interior wire node is a point.
     snaresim::ParameterSet params;
-    params.set(snaresim::ParamId::gridCoarseness, 2.0);
+    params.set(snaresim::ParamId::bandwidth, 7839.5127);
     const auto config = snaresim::makeDrumConfig(params, 48000.0);
     const snaresim::Drum drum(config);
     const double k = 1.0 / 48000.0;
@@ -138,13 +138,13 @@ TEST_CASE("bench: with the air box it reports the air update against a bare sten
     TempDir dir;
     // 22.05 kHz: the default 0.6 m box on a grid of twice the spacing (eq. 41), about 12 000 points
     const auto json = benchJson(dir, { "--model", "airbox", "--sample-rate", "22050", "--seconds", "0.02", "--bench-repeat", "1",
-                                       "--threads", "2", "--set", "grid_coarseness=3" });
+                                       "--threads", "2", "--set", "bandwidth=5093.8628" });
     CHECK(number(json, "samples") == 441);
     CHECK(number(json, "nonfinite_samples") == 0);
 
     // The size of the air: the drum's box (its config, as the renderer makes it) on its grid.
     snaresim::ParameterSet params;
-    params.set(snaresim::ParamId::gridCoarseness, 3.0);
+    params.set(snaresim::ParamId::bandwidth, 5093.8628);
     params.set(snaresim::ParamId::airModel, (double) snaresim::AirModel::airbox);
     const auto config = snaresim::makeDrumConfig(params, 22050.0);
     const snaresim::AirBox box(config.airBoxSpec(), 1.0 / 22050.0);
@@ -184,7 +184,7 @@ TEST_CASE("bench: the block size defaults to 64 and does not change the audio", 
     TempDir dir;
     const auto a = dir.out() / "a.wav";
     const auto b = dir.out() / "b.wav";
-    const std::vector<std::string> quick { "--seconds", "0.2", "--set", "grid_coarseness=3", "--hit", "0.013:127",
+    const std::vector<std::string> quick { "--seconds", "0.2", "--set", "bandwidth=5093.8628", "--hit", "0.013:127",
                                            "--hit", "0.05:90" };
 
     const auto json = benchJson(dir, with({ "-o", a.string() }, quick));
@@ -219,7 +219,7 @@ TEST_CASE("bench: the block size defaults to 64 and does not change the audio", 
 TEST_CASE("bench: the roll scenario renders 16 strikes in 1.5 s", "[renderer][bench]")
 {
     TempDir dir;
-    const auto json = benchJson(dir, { "--bench-scenario", "roll", "--set", "grid_coarseness=3" });
+    const auto json = benchJson(dir, { "--bench-scenario", "roll", "--set", "bandwidth=5093.8628" });
     CHECK(json["bench_scenario"].toString() == "roll");
     CHECK(number(json, "strikes") == 16);
     CHECK(number(json, "strikes_outside") == 0);
@@ -232,11 +232,11 @@ TEST_CASE("bench: the roll scenario renders 16 strikes in 1.5 s", "[renderer][be
 TEST_CASE("bench: the default scenario strikes every 0.5 s, --hit replaces it", "[renderer][bench]")
 {
     TempDir dir;
-    const auto every = benchJson(dir, { "--seconds", "1.2", "--set", "grid_coarseness=3" });
+    const auto every = benchJson(dir, { "--seconds", "1.2", "--set", "bandwidth=5093.8628" });
     CHECK(number(every, "strikes") == 3); // 0, 0.5, 1.0
     CHECK(number(every, "samples") == 57600);
 
-    const auto hit = benchJson(dir, { "--seconds", "0.1", "--hit", "0.02:40", "--set", "grid_coarseness=3" });
+    const auto hit = benchJson(dir, { "--seconds", "0.1", "--hit", "0.02:40", "--set", "bandwidth=5093.8628" });
     CHECK(number(hit, "strikes") == 1);
     CHECK(hit["bench_scenario"].toString() == "custom");
 }
@@ -268,7 +268,7 @@ TEST_CASE("bench: the step profile of one more run, phase by phase, with shares 
     TempDir dir;
     const bool airBox = GENERATE(false, true);
     const auto json = airBox ? benchJson(dir, { "--model", "airbox", "--sample-rate", "22050", "--seconds", "0.02",
-                                                "--bench-repeat", "1", "--set", "grid_coarseness=3" })
+                                                "--bench-repeat", "1", "--set", "bandwidth=5093.8628" })
                              : benchJson(dir, { "--bench-short" });
     const auto& profile = json["profile"];
     REQUIRE(profile.isObject());
@@ -351,5 +351,5 @@ TEST_CASE("bench: bad block sizes and refused options exit with 2", "[renderer][
     requireRejected(dir, { "-o", wav, "--hit", "0:100", "--bench-scenario", "roll" }, "--bench-scenario");
 
     // The engine's checks still apply.
-    requireRejected(dir, { "--bench", "--set", "grid_coarseness=99" }, "grid_coarseness");
+    requireRejected(dir, { "--bench", "--set", "bandwidth=99" }, "bandwidth");
 }

@@ -1,7 +1,7 @@
 // snaresim-render and the whole drum: --model (the air cavity), --mic (the microphones),
 // the snare controls through --set, and the PNG outputs (--energy-plot, --spectrogram,
 // --snare-plot).
-// Renders are short (0.3 s) and coarse (grid_coarseness=2) where detail does not matter.
+// Renders are short (0.3 s) and coarse (the default Quality, bandwidth 7.84 kHz) where detail does not matter.
 
 #include "RendererTestSupport.h"
 
@@ -28,7 +28,7 @@ using namespace rendertest;
 namespace
 {
 
-const std::vector<std::string> kQuick { "--hit", "0:100", "--seconds", "0.3", "--set", "grid_coarseness=2" };
+const std::vector<std::string> kQuick { "--hit", "0:100", "--seconds", "0.3", "--set", "bandwidth=7839.5127" };
 
 std::vector<std::string> with(std::vector<std::string> args, const std::vector<std::string>& more)
 {
@@ -230,9 +230,9 @@ TEST_CASE("snares: --set snares_engaged=0 renders and differs from the default",
     CHECK(number(offJson, "snare_max_penetration_m") == 0.0);
     REQUIRE(onJson.isObject());
     // Snares on: the wires press into the carry head, by far less than one of its grid cells
-    // (the default drum at grid_coarseness=2).
+    // (the default drum at the default Quality).
     snaresim::ParameterSet params;
-    params.set(snaresim::ParamId::gridCoarseness, 2.0);
+    params.set(snaresim::ParamId::bandwidth, 7839.5127);
     const snaresim::Drum drum(snaresim::makeDrumConfig(params, 48000.0));
     CHECK(number(onJson, "snare_max_penetration_m") > 0.0);
     CHECK(number(onJson, "snare_max_penetration_m") < 0.01 * drum.carry().grid().spacing());
@@ -472,10 +472,10 @@ TEST_CASE("plots: --snare-plot writes a PNG of the snare wires", "[renderer]")
         CHECK(entries(dir.out()) == std::vector<std::string> { "drum.wav", "energy.png", "snares.png" });
 
         // The contact count against the data that drew it: the same drum played in-process
-        // (the renderer's default drum at grid_coarseness=2, velocity 100 at sample 0); the
+        // (the renderer's default drum at the default Quality, velocity 100 at sample 0); the
         // count at time n + 1 is the step of sample n's (SnarePlot.h).
         snaresim::ParameterSet params;
-        params.set(snaresim::ParamId::gridCoarseness, 2.0);
+        params.set(snaresim::ParamId::bandwidth, 7839.5127);
         const auto config = snaresim::makeDrumConfig(params, 48000.0);
         snaresim::Drum drum(config);
         const int points = drum.snareContact().numPoints();
@@ -549,7 +549,7 @@ TEST_CASE("plots: --snare-plot writes a PNG of the snare wires", "[renderer]")
     SECTION("no strike inside the render")
     {
         const auto run = runRenderer({ "-o", wav.string(), "--hit", "0.5:100", "--seconds", "0.01", "--set",
-                                       "grid_coarseness=2", "--snare-plot", snares.string(), "--json" },
+                                       "bandwidth=7839.5127", "--snare-plot", snares.string(), "--json" },
                                      dir.root() / "capture");
         INFO("stderr: " << run.err);
         REQUIRE(run.exitCode == 0);

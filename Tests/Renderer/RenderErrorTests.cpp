@@ -141,9 +141,10 @@ TEST_CASE("bad input: --model and --mic take only their names", "[renderer][erro
 TEST_CASE("bad input: a grid or sample rate the scheme cannot take", "[renderer][errors]")
 {
     TempDir dir;
-    // At 8 kHz, 4 times the stability bound (eq. 39) leaves fewer than 4 grid points per
-    // radius; the engine throws std::invalid_argument, reported as "the model cannot be ...".
-    requireBadInput(dir, { "--hit", "0:100", "--sample-rate", "8000", "--set", "grid_coarseness=4" },
+    // At 8 kHz, Quality's coarsest grids (about 4 times the stability bound, eq. 39) leave fewer
+    // than 4 grid points per radius; the engine throws std::invalid_argument, reported as "the
+    // model cannot be ...".
+    requireBadInput(dir, { "--hit", "0:100", "--sample-rate", "8000", "--set", "bandwidth=3750" },
                     "the model cannot be");
 }
 

@@ -125,7 +125,7 @@ long peakRssOfRun(const std::vector<std::string>& args, const fs::path& capture,
 // A cheap drum: coarse grids (the coarsest 16 kHz allows), one wire, no air, at 16 kHz.
 std::vector<std::string> cheap(std::vector<std::string> args)
 {
-    for (const char* a : { "--sample-rate", "16000", "--set", "grid_coarseness=2", "--set", "snare_count=1", "--model", "none" })
+    for (const char* a : { "--sample-rate", "16000", "--set", "snare_count=1", "--model", "none" })
         args.emplace_back(a);
     return args;
 }
