@@ -64,6 +64,10 @@ public:
         KeepUpFigures figures;
     };
 
+    // How a drum is measured: measureKeepUp, or a stand-in for another machine (tests: an
+    // artificial slowdown, a cost model). Called on the check's thread.
+    using Measurement = std::function<KeepUpFigures (Drum&, int blockSize, const std::function<bool()>& cancelled)>;
+
     KeepUpCheck() = default;
     ~KeepUpCheck();
     KeepUpCheck (const KeepUpCheck&) = delete;
@@ -71,10 +75,13 @@ public:
 
     // Whether a drum built from `params` (with the snares on) keeps up at this rate in blocks of
     // blockSize. Returns at once: a verdict measured before for the same model (GridKey) and
-    // block size, or `measuring` (the measurement is started on the check's thread; the newest
-    // question replaces one whose measurement has not finished). Thread-safe; not for the audio
-    // thread.
+    // block size (the question in measurement is left alone), or `measuring` (the measurement
+    // is started on the check's thread; the newest such question replaces one whose measurement
+    // has not finished). Thread-safe; not for the audio thread.
     Verdict ask (const ParameterSet& params, double sampleRate, int blockSize);
+
+    // Measures with `m` from the next question on (an empty one: measureKeepUp). Thread-safe.
+    void setMeasurement (Measurement m);
 
     // The verdict for the last question asked (measuring while it runs). Thread-safe.
     Verdict latest() const;
@@ -112,6 +119,7 @@ private:
     bool busy = false;                  // guarded by lock: a measurement runs
     Question inFlight;                  // guarded by lock: its question
     std::vector<Entry> verdicts;        // guarded by lock: newest last, at most maxVerdicts
+    Measurement measurement;            // guarded by lock: empty for measureKeepUp
     std::atomic<int> done { 0 };
     std::atomic<bool> cancel { false };
 

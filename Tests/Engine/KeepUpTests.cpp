@@ -7,7 +7,9 @@
 
 #include <catch2/catch.hpp>
 
+#include <atomic>
 #include <chrono>
+#include <functional>
 #include <cmath>
 #include <thread>
 
@@ -119,4 +121,41 @@ TEST_CASE("the keep-up check measures in the background and remembers what it me
     check.stop();
     CHECK(check.ask(airbox, 48000.0, 256).state == KeepUpCheck::State::tooSlow);
     CHECK(check.ask(airbox, 96000.0, 256).state == KeepUpCheck::State::none);
+}
+
+TEST_CASE("the keep-up check measures with a stand-in machine, and a question it knows leaves the one in measurement alone", "[keepup]")
+{
+    KeepUpCheck check;
+    std::atomic<int> calls { 0 };
+    // A machine that takes 0.3 s to measure and finds the drum at 0.2 of real time.
+    check.setMeasurement([&calls](Drum&, int blockSize, const std::function<bool()>& cancelled) {
+        ++calls;
+        KeepUpFigures f;
+        for (int i = 0; i < 300 && ! (cancelled && cancelled()); ++i)
+            std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        f.load = 0.2;
+        f.worstBlockShare = 0.3;
+        f.audioSeconds = 0.1;
+        f.blockSize = blockSize;
+        return f;
+    });
+    const auto first = fastDrum();
+    const auto v = waitForVerdict(check, first, 48000.0, 256);
+    REQUIRE(v.state == KeepUpCheck::State::keepsUp);
+    CHECK(v.figures.load == 0.2);
+    CHECK(check.measurementsDone() == 1);
+
+    // While another drum is measured, asking about the known one (as the plug-in does each time
+    // it reads its parameters) answers at once and does not cancel the measurement.
+    auto second = first;
+    second.set(ParamId::snareCount, 6.0);
+    CHECK(check.ask(second, 48000.0, 256).state == KeepUpCheck::State::measuring);
+    for (int i = 0; i < 40; ++i)
+    {
+        CHECK(check.ask(first, 48000.0, 256).state == KeepUpCheck::State::keepsUp);
+        std::this_thread::sleep_for(std::chrono::milliseconds(15));
+    }
+    CHECK(waitForVerdict(check, second, 48000.0, 256).state == KeepUpCheck::State::keepsUp);
+    CHECK(check.measurementsDone() == 2);
+    CHECK(calls == 2); // measured once each: never cancelled and started again
 }
