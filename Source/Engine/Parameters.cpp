@@ -96,6 +96,9 @@ constexpr std::array<ParameterSpec, kNumParameters> kSpecs {{
       "Distance of the room microphone from the batter's centre", C, "", "output" },
     { P::micRoomAngle, "mic_room_angle", "Room mic angle", "deg", 0.0, 90.0, 45.0, S::linear, N::coefficients,
       "Angle of the room microphone from the drum's axis: 0 above the batter, 90 level with it", C, "", "output" },
+    { P::keepUp, "keep_up", "Lower Quality when slow", "", 0.0, 1.0, 1.0, S::linear, N::coefficients,
+      "In real time, where this machine is measured not to keep up with the drum at the chosen Quality in the host's blocks, a lower bandwidth that keeps up plays and the editor says so; off: the chosen Quality always plays. Read by the plug-in only: bounces and the renderer play the chosen Quality",
+      B, "off|on", "model" },
 }};
 
 constexpr bool tableInOrder()

@@ -62,6 +62,8 @@ enum class ParamId : std::size_t
     micBottomHeight,
     micRoomDistance,
     micRoomAngle,
+    // the plug-in's real-time fallback (appended likewise)
+    keepUp,
     count
 };
 

@@ -204,8 +204,10 @@ void DrumView::paint (juce::Graphics& g)
     {
         g.setColour (Palette::accent);
         g.setFont (look.font (11.5f));
-        g.drawFittedText (notice, getLocalBounds().withHeight (look.panelTitleHeight()).withTrimmedRight (look.pxi (12.0f)),
-                          juce::Justification::centredRight, 1);
+        // one line each (the air box's, Quality's)
+        const int lines = juce::StringArray::fromLines (notice).size();
+        g.drawFittedText (notice, getLocalBounds().withHeight (look.panelTitleHeight() * lines).withTrimmedRight (look.pxi (12.0f)),
+                          juce::Justification::topRight, lines);
     }
     else if (! hasSnapshot)
     {

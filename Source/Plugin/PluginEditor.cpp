@@ -228,7 +228,7 @@ void SnareSimAudioProcessorEditor::refreshFromProcessor()
     fallbacksReadout.setValue (fallbacks, fallbacks > 0);
     resetsReadout.setValue (resets, resets > 0);
     newtonReadout.setValue (processor.getMaxNewtonIterations(), false);
-    drumView.setNotice (processor.airBoxNotice());
+    drumView.setNotice (processor.playNotice());
 
     // Follow program changes made by the host.
     const int program = processor.getCurrentProgram();

@@ -11,6 +11,29 @@
 #include <cmath>
 #include <string>
 
+namespace
+{
+// Each rung of Quality's fallback is 0.8 of the bandwidth above it: about 0.64 of its cost (the
+// heads' grid points grow as the bandwidth's square).
+constexpr double kQualityRung = 0.8;
+
+snaresim::KeepUpCheck::Measurement& defaultQualityMeasurement()
+{
+    static snaresim::KeepUpCheck::Measurement m;
+    return m;
+}
+
+juce::String kHz (double f)
+{
+    return juce::String (f / 1000.0, 1) + " kHz";
+}
+
+juce::String timesRealTime (double load)
+{
+    return (load < 10.0 ? juce::String (load, 2) : juce::String (juce::roundToInt (load))) + "x real time";
+}
+} // namespace
+
 //==============================================================================
 SnareSimAudioProcessor::SnareSimAudioProcessor()
     : AudioProcessor (BusesProperties().withOutput ("Output", juce::AudioChannelSet::stereo(), true)),
@@ -23,6 +46,7 @@ SnareSimAudioProcessor::SnareSimAudioProcessor()
         jassert (raw != nullptr);
         rawParameters[static_cast<std::size_t> (spec.id)] = raw;
     }
+    qualityCheck.setMeasurement (defaultQualityMeasurement());
     // The factory presets are read from their embedded files on first use (allocating): here,
     // so that a host asking for the programs from its audio thread finds them ready.
     snaresim::factoryPresets();
@@ -31,8 +55,9 @@ SnareSimAudioProcessor::SnareSimAudioProcessor()
 SnareSimAudioProcessor::~SnareSimAudioProcessor()
 {
     cancelPendingUpdate();
-    player.stopBuilding();      // the builder reads currentParameters, which asks keepUp
+    player.stopBuilding();      // the builder reads currentParameters, which asks keepUp and qualityCheck
     keepUp.stop();
+    qualityCheck.stop();
 }
 
 const juce::String SnareSimAudioProcessor::getName() const
@@ -63,11 +88,99 @@ snaresim::KeepUpCheck::Verdict SnareSimAudioProcessor::askKeepUp (const snaresim
     }
 }
 
+void SnareSimAudioProcessor::setDefaultQualityMeasurement (snaresim::KeepUpCheck::Measurement m)
+{
+    defaultQualityMeasurement() = std::move (m);
+}
+
+snaresim::KeepUpCheck::Verdict SnareSimAudioProcessor::askQuality (const snaresim::ParameterSet& params) const
+{
+    try
+    {
+        return qualityCheck.ask (params, preparedRate.load(), preparedBlockSize.load());
+    }
+    catch (const std::exception&)
+    {
+        return {};  // nothing known: the chosen Quality plays
+    }
+}
+
+bool SnareSimAudioProcessor::lowersQuality (const snaresim::ParameterSet& params) const
+{
+    return ! offline.load() && params.get (snaresim::ParamId::keepUp) >= 0.5
+           && std::lround (params.get (snaresim::ParamId::airModel)) != (long) snaresim::AirModel::airbox;
+}
+
+snaresim::ParameterSet SnareSimAudioProcessor::keptUp (snaresim::ParameterSet params) const
+{
+    // Down the rungs while each is measured too slow; the first one not known to be too slow
+    // plays (measured or being measured), or the lowest.
+    using State = snaresim::KeepUpCheck::State;
+    const double least = snaresim::spec (snaresim::ParamId::bandwidth).minValue;
+    for (double f = params.get (snaresim::ParamId::bandwidth);; f = std::max (least, f * kQualityRung))
+    {
+        params.setClamped (snaresim::ParamId::bandwidth, f);
+        const auto state = askQuality (params).state;
+        if ((state != State::tooSlow && state != State::failed) || f <= least)
+            return params;
+    }
+}
+
 snaresim::ParameterSet SnareSimAudioProcessor::currentParameters() const
+{
+    auto params = withAirPolicy (hostParameters());
+    if (lowersQuality (params))
+        params = keptUp (params);
+    playedBandwidth.store (params.get (snaresim::ParamId::bandwidth));
+    return params;
+}
+
+snaresim::KeepUpCheck::Verdict SnareSimAudioProcessor::qualityVerdict() const
+{
+    const auto params = withAirPolicy (hostParameters());
+    if (! lowersQuality (params))
+        return {};
+    return askQuality (params);
+}
+
+juce::String SnareSimAudioProcessor::qualityNotice() const
+{
+    using State = snaresim::KeepUpCheck::State;
+    const auto params = withAirPolicy (hostParameters());
+    if (! lowersQuality (params))
+        return {};
+    const auto chosen = askQuality (params);
+    if (chosen.state != State::tooSlow && chosen.state != State::failed)
+        return {};
+
+    const double asked = params.get (snaresim::ParamId::bandwidth);
+    const auto playing = keptUp (params);
+    const double f = playing.get (snaresim::ParamId::bandwidth);
+    const auto verdict = askQuality (playing);
+    const juce::String why = chosen.state == State::failed ? "cannot be built here"
+                                                           : "needs " + timesRealTime (chosen.figures.load) + " here";
+    juce::String line = "Quality: " + kHz (asked) + " " + why + "; " + kHz (f);
+    switch (verdict.state)
+    {
+        case State::keepsUp:    return line + " plays (" + timesRealTime (verdict.figures.load) + ")";
+        case State::tooSlow:    return line + " plays and needs " + timesRealTime (verdict.figures.load) + ": it may drop out";
+        case State::failed:     return line + " plays";
+        case State::measuring:
+        case State::none:       break;
+    }
+    return line + " plays while it is measured";
+}
+
+juce::String SnareSimAudioProcessor::playNotice() const
+{
+    const auto air = airBoxNotice(), quality = qualityNotice();
+    return air.isEmpty() ? quality : quality.isEmpty() ? air : air + "\n" + quality;
+}
+
+snaresim::ParameterSet SnareSimAudioProcessor::withAirPolicy (snaresim::ParameterSet params) const
 {
     using snaresim::AirModel;
     using snaresim::ParamId;
-    auto params = hostParameters();
 
     if (offline.load())
     {
@@ -332,10 +445,12 @@ void SnareSimAudioProcessor::applyProgram (int index)
     if (index < 0 || index >= (int) presets.size())
         return;
 
-    // The preset's values over the defaults.
+    // The preset's values over the defaults; "Lower Quality when slow" is this machine's, not the
+    // drum's: it stays as it is.
     snaresim::ParameterSet values;
     for (const auto& [id, value] : presets[(size_t) index].values)
         values.setClamped (id, value);
+    values.setClamped (snaresim::ParamId::keepUp, hostParameters().get (snaresim::ParamId::keepUp));
     applyParameters (values);
 }
 

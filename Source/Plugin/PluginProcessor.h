@@ -86,7 +86,9 @@ public:
     // plays: in a host's offline render (setNonRealtime) the air box when "Air box when
     // bouncing" is on, else the air model; in real time the air model, except that the air box
     // plays only once a measurement has shown that this machine keeps up with it at the prepared
-    // sample rate and block size (KeepUp.h), and the cavity meanwhile or otherwise.
+    // sample rate and block size (KeepUp.h), and the cavity meanwhile or otherwise. Quality as
+    // chosen, except that in real time with "Lower Quality when slow" on (not in the air box) a
+    // bandwidth measured too slow here gives way to the first lower rung that is not (keptUp).
     // Thread-safe; never waits for a measurement; not for the audio thread.
     snaresim::ParameterSet currentParameters() const;
 
@@ -112,6 +114,21 @@ public:
     // Measurements of the air box finished so far (for tests).
     int airBoxMeasurements() const noexcept { return keepUp.measurementsDone(); }
 
+    // Quality in real time ("Lower Quality when slow", keep_up): the bandwidth playing, the
+    // verdict on the chosen one at the prepared rate and block size (none when not measured:
+    // offline, switched off, or the air box plays), and the editor's line about a lower one
+    // playing (empty when the chosen one plays).
+    double playingBandwidth() const noexcept { return playedBandwidth.load(); }
+    snaresim::KeepUpCheck::Verdict qualityVerdict() const;
+    juce::String qualityNotice() const;
+    // What the editor says about the drum that plays: the air box's line and Quality's.
+    juce::String playNotice() const;
+    // Measures Quality's drums with `m` instead of timing them (tests: a slower machine). Every
+    // processor made after setDefaultQualityMeasurement starts with its `m` (the test runner's).
+    void setQualityMeasurement (snaresim::KeepUpCheck::Measurement m) { qualityCheck.setMeasurement (std::move (m)); }
+    static void setDefaultQualityMeasurement (snaresim::KeepUpCheck::Measurement m);
+    int qualityMeasurements() const noexcept { return qualityCheck.measurementsDone(); }
+
     // The host renders offline (any thread; VST3 hosts call it from the audio thread).
     void setNonRealtime (bool isNonRealtime) noexcept override;
 
@@ -128,6 +145,14 @@ private:
     snaresim::ParameterSet hostParameters() const;
     bool playsAirBox() const noexcept;      // the drum playing is in the air box (audio thread)
     snaresim::KeepUpCheck::Verdict askKeepUp (const snaresim::ParameterSet& params) const;
+    // The air model as it plays (currentParameters), Quality as chosen.
+    snaresim::ParameterSet withAirPolicy (snaresim::ParameterSet params) const;
+    // Real time may play a lower Quality than `params` ask (keep_up on, not the air box).
+    bool lowersQuality (const snaresim::ParameterSet& params) const;
+    snaresim::KeepUpCheck::Verdict askQuality (const snaresim::ParameterSet& params) const;
+    // `params` at the bandwidth real time plays: the chosen one, or the first rung below it
+    // (each 0.8 of the one above, down to the control's least) not measured too slow.
+    snaresim::ParameterSet keptUp (snaresim::ParameterSet params) const;
 
     juce::AudioProcessorValueTreeState apvts;
     std::array<std::atomic<float>*, snaresim::kNumParameters> rawParameters {};
@@ -143,6 +168,10 @@ private:
     mutable snaresim::KeepUpCheck keepUp;       // whether the air box keeps up in real time here
     bool offlineInBlocks = false;               // `offline` as processBlock last saw it (audio thread)
     mutable std::atomic<bool> airBoxLive { false }; // real time plays the air box (it keeps up here)
+
+    // --- Quality in real time -------------------------------------------------------------
+    mutable snaresim::KeepUpCheck qualityCheck;     // whether a bandwidth keeps up here
+    mutable std::atomic<double> playedBandwidth { 0.0 };    // what currentParameters last chose
 
     // --- programs --------------------------------------------------------------------------
     std::atomic<int> currentProgram { 0 };

@@ -12,7 +12,10 @@ juce::String loadPresetFile (SnareSimAudioProcessor& processor, const juce::File
 {
     try
     {
-        processor.applyParameters (parametersOf (readPresetFile (std::filesystem::path (file.getFullPathName().toStdString()))));
+        auto values = parametersOf (readPresetFile (std::filesystem::path (file.getFullPathName().toStdString())));
+        // "Lower Quality when slow" is this machine's, not the drum's: it stays as it is.
+        values.setClamped (ParamId::keepUp, processor.parameterValues().get (ParamId::keepUp));
+        processor.applyParameters (values);
     }
     catch (const PresetFileError& e)
     {

@@ -95,6 +95,14 @@ Options parse(int argc, char** argv)
     return o;
 }
 
+// The host's value of a switch, found by its name.
+void setSwitch(juce::AudioPluginInstance& plugin, snaresim::ParamId id, bool on)
+{
+    const auto& spec = snaresim::spec(id);
+    if (auto* p = snaresim::testhost::findParameter(plugin, juce::String(std::string(spec.name))))
+        p->setValue(on ? 1.0f : 0.0f);
+}
+
 // Quality as the grids' coarseness q (1 to 4): its bandwidth (qualityBandwidth_Hz) as the host's
 // normalised value of the logarithmic parameter (VST3 passes the plug-in's own 0..1 range).
 void setQuality(juce::AudioPluginInstance& plugin, double q)
@@ -164,16 +172,16 @@ int main(int argc, char** argv)
     {
         p->enableAllBuses();
         channels = std::max(channels, p->getTotalNumOutputChannels());
+        // the drum as chosen, never a lower Quality because this machine is measured slow
+        setSwitch(*p, snaresim::ParamId::keepUp, false);
         if (opt.quality > 0.0)
-        {
-            // delivered with a block, then the next prepareToPlay builds the grid from it
             setQuality(*p, opt.quality);
-            snaresim::testhost::RenderRequest settle;
-            settle.sampleRate = opt.sampleRate;
-            settle.maxBlockSize = opt.block;
-            settle.numSamples = opt.block;
-            snaresim::testhost::render(*p, settle);
-        }
+        // delivered with a block, then the next prepareToPlay builds the grid from them
+        snaresim::testhost::RenderRequest settle;
+        settle.sampleRate = opt.sampleRate;
+        settle.maxBlockSize = opt.block;
+        settle.numSamples = opt.block;
+        snaresim::testhost::render(*p, settle);
     }
 
     juce::AudioBuffer<float> buffer(channels, opt.block);
