@@ -20,13 +20,13 @@ namespace
     throw UserError("cannot read " + file.string() + ": " + why);
 }
 
-MonoAudio readWav(const std::filesystem::path& file)
+// A WAV or AIFF file through JUCE's reader of that format.
+MonoAudio readWithJuce(const std::filesystem::path& file, juce::AudioFormat& format, const std::string& name)
 {
-    juce::WavAudioFormat format;
     std::unique_ptr<juce::AudioFormatReader> reader(
         format.createReaderFor(new juce::FileInputStream(juce::File(file.string())), true));
     if (reader == nullptr)
-        cannotRead(file, "not a WAV file JUCE can read");
+        cannotRead(file, "not a " + name + " file JUCE can read");
     if (reader->lengthInSamples <= 0 || reader->numChannels < 1)
         cannotRead(file, "no samples");
     if (reader->lengthInSamples > (juce::int64) 1 << 31)
@@ -102,13 +102,21 @@ MonoAudio readMonoAudio(const std::filesystem::path& file)
     std::array<char, 4> magic {};
     std::ifstream in(file, std::ios::binary);
     if (! in.read(magic.data(), (std::streamsize) magic.size()))
-        cannotRead(file, "not a WAV or FLAC file (too short)");
+        cannotRead(file, "not a WAV, AIFF or FLAC file (too short)");
     const std::string head(magic.data(), magic.size());
     if (head == "fLaC")
         return readFlac(file);
     if (head == "RIFF" || head == "RF64")
-        return readWav(file);
-    cannotRead(file, "not a WAV or FLAC file");
+    {
+        juce::WavAudioFormat wav;
+        return readWithJuce(file, wav, "WAV");
+    }
+    if (head == "FORM")
+    {
+        juce::AiffAudioFormat aiff;
+        return readWithJuce(file, aiff, "AIFF");
+    }
+    cannotRead(file, "not a WAV, AIFF or FLAC file");
 }
 
 } // namespace snaresim::render

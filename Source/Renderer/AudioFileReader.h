@@ -1,6 +1,6 @@
 #pragma once
-// Reading a recording for --match: a WAV file (JUCE's reader: integer or float samples, any
-// rate) or a FLAC file (the system's libFLAC), its channels averaged to one.
+// Reading a recording for --match and --distance: a WAV or AIFF file (JUCE's readers: integer
+// or float samples, any rate) or a FLAC file (the system's libFLAC), its channels averaged to one.
 
 #include <filesystem>
 #include <vector>
@@ -15,8 +15,8 @@ struct MonoAudio
     int channels = 0;
 };
 
-// Throws UserError ("cannot read FILE: ...") when the file is missing, unreadable, neither a
-// WAV nor a FLAC file, or holds no samples.
+// Throws UserError ("cannot read FILE: ...") when the file is missing, unreadable, not a WAV,
+// AIFF or FLAC file, or holds no samples.
 MonoAudio readMonoAudio(const std::filesystem::path& file);
 
 } // namespace snaresim::render

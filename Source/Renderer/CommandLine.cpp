@@ -771,7 +771,7 @@ Benchmark:
 
 Matching a recording:
   --match FILE          search the drum's parameters for the strike closest to a recorded
-                        one (a WAV or FLAC file holding one strike; channels averaged) and
+                        one (a WAV, AIFF or FLAC file of one strike; channels averaged) and
                         write them as a preset file to -o (--preset FILE and the plug-in's
                         File button load it). The distance compares the features of
                         scripts/snare_features.py (tail centroid, band shares, the 20 / 40

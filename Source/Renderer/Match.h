@@ -3,7 +3,7 @@
 // closest to a recorded one (MatchDistance.h), found by MatchSearch.h's search over the
 // parameters of --match-params, written as a preset file (docs/MATCHING.md).
 //
-// The recording is read (WAV or FLAC, channels averaged) and measured first: unreadable,
+// The recording is read (WAV, AIFF or FLAC, channels averaged) and measured first: unreadable,
 // silent, shorter than 100 ms or no strike is a UserError before any render. Each candidate is
 // one strike of the drum built from the parameters (makeDrumConfig, played through the
 // player as the plug-in plays it), kMatchSeconds long, at the recording's sample rate

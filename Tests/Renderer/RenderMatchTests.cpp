@@ -93,7 +93,7 @@ TEST_CASE("match: recordings that are not one strike are refused, no preset writ
 
     const auto text = dir.in() / "text.wav";
     std::ofstream(text) << "not a sound file\n";
-    refuse(text, "not a WAV or FLAC file");
+    refuse(text, "not a WAV, AIFF or FLAC file");
     const auto garbage = dir.in() / "garbage.wav";
     std::ofstream(garbage) << "RIFF\x10\0\0\0WAVEjunkjunk";
     refuse(garbage, "garbage.wav");
