@@ -280,6 +280,8 @@ void checkBenchOptions(const RenderJob& job, bool haveSeconds)
             fail(std::string(option) + " cannot be used with --bench (the benchmark writes only the WAV, -o)");
     if (job.lossless)
         fail("--lossless cannot be used with --bench (the benchmark runs the plug-in's configuration)");
+    if (! job.references.empty())
+        fail("--ref cannot be used with --bench (the benchmark measures time, not sound)");
     if (job.mic && *job.mic != MicOutput::mix)
         fail("--mic: --bench renders the mix only (Drum::process, the plug-in's output)");
     if (job.benchShort && haveSeconds)
@@ -359,6 +361,15 @@ std::filesystem::path parsePath(std::string_view text, std::string_view option)
     if (text.empty())
         fail(std::string(option) + ": empty file name");
     return std::filesystem::path(std::string(text));
+}
+
+// --ref KITDIR:GLOB: split at the first ':'.
+ReferenceSpec parseReference(std::string_view text)
+{
+    const auto colon = text.find(':');
+    if (colon == std::string_view::npos || colon == 0 || colon + 1 == text.size())
+        fail("--ref: " + inQuotes(text) + " is not KITDIR:GLOB (e.g. kits/Forzee:'Snare-*.wav')");
+    return { std::filesystem::path(std::string(text.substr(0, colon))), std::string(text.substr(colon + 1)), std::string(text) };
 }
 
 std::string parsePresetName(std::string_view text)
@@ -590,6 +601,8 @@ CommandLine parseCommandLine(const std::vector<std::string>& args)
     options.once("--match-params", job.matchParams, parseMatchParams);
     options.once("--match-budget", job.matchBudget, parseMatchBudget);
     options.once("--match-seed", job.matchSeed, parseMatchSeed);
+    options.each("--distance", job.distanceFiles, parsePath);
+    options.each("--ref", job.references, parseReference);
     options.parse();
 
     if (sampleRate)
@@ -601,8 +614,23 @@ CommandLine parseCommandLine(const std::vector<std::string>& args)
         return result;
     }
 
+    if (! job.distanceFiles.empty())
+    {
+        if (output)
+            fail("-o cannot be used with --distance (it prints the distances, writes nothing)");
+        if (job.references.empty())
+            fail("--distance: missing --ref KITDIR:GLOB, the recordings to measure against (see --help)");
+        if (sampleRate)
+            fail("--sample-rate cannot be used with --distance (it renders nothing)");
+        if (job.match)
+            fail("--match cannot be used with --distance");
+        return result; // the options it refuses: Distance.cpp
+    }
+
     if (job.match)
     {
+        if (! job.references.empty())
+            fail("--ref cannot be used with --match");
         if (! output)
             fail("--match: missing -o PRESET_FILE, the preset file to write (see --help)");
         if (sampleRate)
@@ -653,6 +681,7 @@ Usage:
                   [--block-size N] [--hit ... | --midi ...] [options]
   snaresim-render --match RECORDING -o PRESET_FILE [--match-params ID,ID,...]
                   [--match-budget N] [--preset ...] [--set ...] [--json]
+  snaresim-render --distance FILE ... --ref KITDIR:GLOB ... [--json]
   snaresim-render --list-params
   snaresim-render --help
 
@@ -798,6 +827,27 @@ Matching a recording:
   --match-seed N        the search's random numbers, 0..2147483647 (default 20240611):
                         the same seed gives the same preset file; another explores other
                         candidates (the distance varies with it: try a few)
+
+Distance to recordings:
+  --distance FILE       measure a recorded strike (WAV, AIFF or FLAC; channels averaged, any
+                        level) against the recordings of --ref: its distance to each and
+                        its nearest; repeatable. Nothing is rendered or written
+  --ref KITDIR:GLOB     the recordings to measure against: the files under KITDIR that the
+                        glob matches (e.g. kits/Forzee:'Snare-*.wav'; the kit is KITDIR's
+                        name); repeatable. With a render (-o ... --hit ...) the WAV written
+                        (its channels averaged) is measured against them too, and the
+                        summary or the JSON ("distance") adds the result.
+                        The distance: the energy in 23 third-octave bands (100 Hz to 16
+                        kHz) over 0-30, 30-100 and 100-300 ms after the onset, in dB of
+                        the whole, floored at -60 dB; the RMS of two strikes' difference
+                        in dB (docs/MATCHING.md). Strikes of one drum lie about 2-5 dB
+                        apart, snares of different kits 5-8 dB. Prints, per strike, its
+                        nearest recording and then each distance (--json: one object with
+                        "references" (kit, file) and "strikes" (file, nearest,
+                        nearest_kit, distance_db, distances_db in the references' order,
+                        fingerprint_db)). A file unreadable, silent or without a strike
+                        (its level 100-300 ms after the onset not 3 dB below the first
+                        30 ms'), or a --ref matching no file: exit 2, nothing written.
 )" + presetLine() + R"(
 Environment: SNARESIM_VECTOR_TARGET=baseline|avx2|avx512 runs the engine's hot loops on
 that build (default: the widest the processor has; one it lacks: a line on stderr and the

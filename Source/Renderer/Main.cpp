@@ -9,6 +9,7 @@
 #include "AtomicFile.h"
 #include "Benchmark.h"
 #include "CommandLine.h"
+#include "Distance.h"
 #include "EnergyCsvWriter.h"
 #include "EnergyPlot.h"
 #include "EngineSetup.h"
@@ -124,6 +125,9 @@ int render(const RenderJob& commandLineJob)
     const auto plan = makeRenderPlan(commandLineJob, midiStrikes);
     const auto config = makeConfig(commandLineJob, params);
     auto drum = makeDrum(config);
+    std::optional<DistanceReport> distance;
+    if (! commandLineJob.references.empty())
+        distance = DistanceReport { loadReferences(commandLineJob.references), {} };
 
     // With the air box the WAV holds its air microphones unless --mic says otherwise.
     RenderJob job = commandLineJob;
@@ -210,6 +214,11 @@ int render(const RenderJob& commandLineJob)
 
     progress.finish();
     wav.finish();
+    if (distance) // the WAV as --distance reads it, before anything is committed
+    {
+        distance->strikes.push_back(measureDistances(wavFile.temporary(), "the rendered strike " + job.output->string(), distance->references));
+        distance->strikes.back().file = *absolutePath(job.output);
+    }
     if (csv)
         csv->finish();
     if (energyPlot)
@@ -242,7 +251,8 @@ int render(const RenderJob& commandLineJob)
                                 absolutePath(job.energyCsv),
                                 absolutePath(job.energyPlot),
                                 absolutePath(job.spectrogram),
-                                absolutePath(job.snarePlot) };
+                                absolutePath(job.snarePlot),
+                                distance ? &*distance : nullptr };
     std::cout << (job.json ? formatJson(report) : formatSummary(report)) << std::flush;
     return 0;
 }
@@ -286,7 +296,7 @@ int benchmark(const RenderJob& commandLineJob)
     }
 
     // The command line's job: the scenario is named from it (job holds its strikes as --hit).
-    const RenderReport report { commandLineJob, plan, stats, absolutePath(job.output), {}, {}, {}, {} };
+    const RenderReport report { commandLineJob, plan, stats, absolutePath(job.output), {}, {}, {}, {}, nullptr };
     std::cout << (job.json ? formatJson(report) : formatSummary(report)) << std::flush;
 
     if (stats.nonfiniteSamples > 0)
@@ -313,6 +323,8 @@ int run(const std::vector<std::string>& args)
         case CommandLine::Action::render:
             break;
     }
+    if (! commandLine.job.distanceFiles.empty())
+        return runDistance(commandLine.job);
     if (commandLine.job.match)
         return runMatch(commandLine.job);
     return commandLine.job.bench ? benchmark(commandLine.job) : render(commandLine.job);

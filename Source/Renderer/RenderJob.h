@@ -82,6 +82,14 @@ struct MatchCoordinate
     bool operator==(const MatchCoordinate&) const = default;
 };
 
+// One --ref KITDIR:GLOB: the recordings of one kit a strike is measured against.
+struct ReferenceSpec
+{
+    std::filesystem::path kitDir;
+    std::string pattern;  // a glob(7) pattern under kitDir
+    std::string text;     // as typed, for messages
+};
+
 inline constexpr int kDefaultMatchBudget = 400;  // --match-budget: renders
 inline constexpr int kMinMatchBudget = 12;
 inline constexpr int kMaxMatchBudget = 100000;
@@ -117,6 +125,8 @@ struct RenderJob
     std::optional<std::vector<MatchCoordinate>> matchParams; // --match-params ID,ID,... (checked IDs)
     std::optional<int> matchBudget;                 // --match-budget N (renders)
     std::optional<int> matchSeed;                   // --match-seed N (the search's random numbers)
+    std::vector<std::filesystem::path> distanceFiles; // --distance FILE, in order (nothing rendered)
+    std::vector<ReferenceSpec> references;          // --ref KITDIR:GLOB, in order
 
     MicOutput selectedMic() const { return mic.value_or(MicOutput::mix); }
     int selectedBlockSize() const { return blockSize.value_or(kDefaultBlockSize); }

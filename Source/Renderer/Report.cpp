@@ -133,6 +133,8 @@ std::string formatJson(const RenderReport& r)
     object->setProperty("snare_max_iterations", r.stats.solver.maxSnareIterations);
     object->setProperty("snare_max_penetration_m", r.stats.solver.maxSnarePenetration_m);
     object->setProperty("solver_fallbacks", (juce::int64) r.stats.solver.fallbacks);
+    if (r.distance)
+        object->setProperty("distance", distanceJson(*r.distance));
 
     if (const auto& b = r.stats.bench)
     {
@@ -263,6 +265,8 @@ std::string formatSummary(const RenderReport& r)
         s += formatted("energy balance drift (max, relative): %.3g\n", *r.stats.energyRelativeDriftMax);
     if (r.stats.solver.fallbacks > 0)
         s += formatted("warning: the contact solver fell back %ld time(s)\n", r.stats.solver.fallbacks);
+    if (r.distance)
+        s += distanceSummary(*r.distance);
     return s;
 }
 

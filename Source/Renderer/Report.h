@@ -2,6 +2,7 @@
 // What snaresim-render prints after a successful render: one JSON object (--json) or a
 // short human-readable summary.
 
+#include "Distance.h"
 #include "RenderJob.h"
 #include "RenderPlan.h"
 #include "Renderer.h"
@@ -23,6 +24,7 @@ struct RenderReport
     std::optional<std::filesystem::path> energyPlot; // absolute
     std::optional<std::filesystem::path> spectrogram; // absolute
     std::optional<std::filesystem::path> snarePlot; // absolute
+    const DistanceReport* distance;                 // --ref: the rendered strike's (none: nullptr)
 };
 
 // One line, ends with a newline. Non-finite numbers are written as null. With --bench
@@ -37,10 +39,11 @@ struct RenderReport
 // compute_seconds_per_audio_second and share of the phases' sum),
 // compute_seconds_per_audio_second (the phases' sum), run_compute_seconds_per_audio_second
 // (that run's blocks), fastest_run_compute_seconds_per_audio_second (the fastest timed run's)
-// and overhead (the profiled run's time over the fastest timed run's, less one).
+// and overhead (the profiled run's time over the fastest timed run's, less one). With --ref it
+// adds "distance" (Distance.h's distanceJson).
 std::string formatJson(const RenderReport& report);
 
-// A few lines, ends with a newline.
+// A few lines, ends with a newline; with --ref the rendered strike's distances after them.
 std::string formatSummary(const RenderReport& report);
 
 } // namespace snaresim::render

@@ -323,3 +323,30 @@ TEST_CASE("match options: the recording, the preset file, the parameters searche
     CHECK(errorOf(playable({ "--match-seed", "5" })) == "--match-seed is an option of --match");
     CHECK(errorOf({ "--match", "a.wav", "-o", "m", "--sample-rate", "44100" }).starts_with("--sample-rate cannot be used with --match"));
 }
+
+TEST_CASE("distance options: the strikes, the recordings, and what they cannot go with", "[renderer][command-line][distance]")
+{
+    const auto job = jobOf({ "--distance", "a.wav", "--ref", "kits/Forzee:Snare-*.wav", "--distance", "b.aiff", "--ref", "k:x:y" });
+    CHECK(job.distanceFiles == std::vector<std::filesystem::path> { "a.wav", "b.aiff" });
+    REQUIRE(job.references.size() == 2);
+    CHECK(job.references[0].kitDir == "kits/Forzee");
+    CHECK(job.references[0].pattern == "Snare-*.wav");
+    CHECK(job.references[0].text == "kits/Forzee:Snare-*.wav");
+    CHECK(job.references[1].kitDir == "k"); // split at the first ':'
+    CHECK(job.references[1].pattern == "x:y");
+    CHECK_FALSE(job.output);
+
+    const auto render = jobOf(playable({ "--ref", "k:*.wav" })); // a render measured too
+    CHECK(render.references.size() == 1);
+    CHECK(render.distanceFiles.empty());
+
+    CHECK(errorOf({ "--distance", "a.wav" }) == "--distance: missing --ref KITDIR:GLOB, the recordings to measure against (see --help)");
+    for (const auto* bad : { "kits", ":*.wav", "kits:" })
+        CHECK(errorOf({ "--distance", "a.wav", "--ref", bad }).starts_with("--ref: '" + std::string(bad) + "' is not KITDIR:GLOB"));
+    CHECK(errorOf({ "--distance", "a.wav", "--ref", "k:*", "-o", "x.wav" }).starts_with("-o cannot be used with --distance"));
+    CHECK(errorOf({ "--distance", "a.wav", "--ref", "k:*", "--sample-rate", "44100" }).starts_with("--sample-rate cannot be used with --distance"));
+    CHECK(errorOf({ "--distance", "a.wav", "--ref", "k:*", "--match", "b.wav" }) == "--match cannot be used with --distance");
+    CHECK(errorOf({ "--match", "a.wav", "-o", "m", "--ref", "k:*" }) == "--ref cannot be used with --match");
+    CHECK(errorOf({ "--bench", "--ref", "k:*" }).starts_with("--ref cannot be used with --bench"));
+    CHECK(errorOf({ "--distance" }) == "option --distance needs a value (see --help)");
+}
