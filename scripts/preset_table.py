@@ -20,6 +20,10 @@ Checks, per row:
   - a snares-on preset's tail centroid over its own with --set snares_engaged=off (the same
     velocity): at least 2.5 or not
 A preset plays with its snares off when its render equals the one with snares_engaged=off.
+Each row also gives the strike's whole-strike distance (docs/MATCHING.md, "The distance of two
+strikes") to its nearest snares-on recording of the dev kits (ForzeeStereo Snare-*,
+ColomboAcousticDrumkit snare-opaque*normal*, BJA_Pacific SN_* and SN3_*, Millo-Drums_v.1 snare1
+and snare3), measured by snaresim-render --distance; it is printed, not checked.
 
 --check: exit status 1 when a checked value lies outside its window or a ratio under 2.5 (the
 table is printed either way), and 77 (the test suite's "skipped") when the recordings are missing.
@@ -66,6 +70,10 @@ COLUMNS = [('centroid', 'tail centroid (Hz)', lambda r: r['tail_centroid_hz'], '
            ('fall40', 'fall 40 dB (ms)', lambda r: r['fall_40db_ms'], '%.0f'),
            ('peak', 'lowest strong peak (Hz)', lambda r: r['lowest_peak_hz'], '%.0f')]
 TARGETS = ['centroid', '5-10k', 'fall40']  # checked against the recordings
+# The snares-on recordings of the dev kits a strike's distance is measured to (KITDIR:GLOB).
+DISTANCE_REFS = [('ForzeeStereo', 'Snare-*.wav'), ('ColomboAcousticDrumkit', 'snare-opaque*normal*'),
+                 ('BJA_Pacific', 'SN_*.aiff'), ('BJA_Pacific', 'SN3_*.aiff'),
+                 ('Millo-Drums_v.1', 'snare1.flac'), ('Millo-Drums_v.1', 'snare3.flac')]
 
 
 class Failed(Exception):
@@ -98,6 +106,23 @@ def render_strike(render, wav, preset, velocity, seconds, snares_off, settings=(
         raise Failed('%s: %s' % (' '.join(args), (done.stderr.strip().splitlines() or ['exit %d' % done.returncode])[-1]))
 
 
+def distance_refs():
+    return ['%s:%s' % (os.path.join(airbox_figures.KITS, kit), pattern) for kit, pattern in DISTANCE_REFS]
+
+
+def nearest_recordings(render, files):
+    """Each file's distance to its nearest recording of DISTANCE_REFS and that recording's name."""
+    args = [render, '--json']
+    for f in files:
+        args += ['--distance', f]
+    for ref in distance_refs():
+        args += ['--ref', ref]
+    done = subprocess.run(args, capture_output=True, text=True)
+    if done.returncode != 0:
+        raise Failed('snaresim-render --distance: %s' % (done.stderr.strip().splitlines() or ['exit %d' % done.returncode])[-1])
+    return [(s['distance_db'], os.path.basename(s['nearest'])) for s in json.loads(done.stdout)['strikes']]
+
+
 def recorded_ranges():
     """Each recorded set's files and (min, max) of every column; None when a set has no files."""
     sets = {}
@@ -127,7 +152,7 @@ def check(value, bounds):
 
 
 def measure(render, work, seconds, keep, chosen=None, settings=()):
-    rows = []
+    rows, strikes = [], []
     for preset in chosen or presets(render):
         name = os.path.splitext(os.path.basename(preset))[0] if os.path.isfile(preset) else preset
         # the settings in the file names, so that a --work folder keeps each set apart
@@ -140,10 +165,13 @@ def measure(render, work, seconds, keep, chosen=None, settings=()):
             with open(on, 'rb') as a, open(off, 'rb') as b:
                 snares = 'off' if a.read() == b.read() else 'on'
             mine, theirs = values(snare_features.features(on)), values(snare_features.features(off))
+            strikes.append(on)
             rows.append({'preset': preset, 'velocity': velocity, 'snares': snares, 'file': on if keep else None,
                          'features': mine, 'snares_off_features': None if snares == 'off' else theirs})
     if not rows:
         raise Failed('%s --help lists no presets' % render)
+    for row, (distance, nearest) in zip(rows, nearest_recordings(render, strikes)):
+        row['distance_db'], row['nearest'] = distance, nearest
     return rows
 
 
@@ -208,7 +236,7 @@ def main():
     if args.json:
         print(json.dumps({'seconds': args.seconds, 'settings': args.settings, 'sample_rate_hz': RATE, 'velocities': VELOCITIES,
                           'margin': MARGIN, 'ratio': RATIO, 'rows': rows, 'recordings': sets,
-                          'windows': windows}, indent=1))
+                          'windows': windows, 'distance_references': distance_refs()}, indent=1))
         return status
 
     def show(v, fmt):
@@ -216,8 +244,8 @@ def main():
 
     # One row per preset and velocity.
     print('| preset | velocity | snares | ' + ' | '.join(h for _, h, _, _ in COLUMNS)
-          + ' | centroid / snares off |')
-    print('|---' * (len(COLUMNS) + 4) + '|')
+          + ' | centroid / snares off | distance (dB) | nearest recording |')
+    print('|---' * (len(COLUMNS) + 6) + '|')
     for row in rows:
         cells = []
         for key, _, _, fmt in COLUMNS:
@@ -228,6 +256,7 @@ def main():
         ratio = row['centroid_over_snares_off']
         cells.append('-' if row['snares'] == 'off' else 'n/a' if ratio is None
                      else '%.2f' % ratio + ('' if ratio >= RATIO else ' **< %g**' % RATIO))
+        cells += ['%.2f' % row['distance_db'], row['nearest']]
         print('| %s | %d | %s | %s |' % (row['preset'], row['velocity'], row['snares'], ' | '.join(cells)))
 
     # The recordings' ranges, then the windows checked.
@@ -250,6 +279,8 @@ def main():
     total = sum(1 for r in rows if r['snares'] == 'on')
     print('Tail centroid at least %g times the same preset\'s with snares_engaged=off: %d of %d snares-on rows.'
           % (RATIO, ok, total))
+    print('Distance: the whole-strike distance to the nearest of the snares-on recordings %s (docs/MATCHING.md); '
+          'not checked.' % ', '.join('%s %s' % ref for ref in DISTANCE_REFS))
     print('Rendered %s s at %d Hz, --mic mix, the default model%s; %s.'
           % ('%g' % args.seconds, RATE, ''.join(', --set ' + v for v in args.settings),
              datetime.date.today().isoformat()))
