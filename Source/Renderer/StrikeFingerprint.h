@@ -11,6 +11,8 @@
 // and its power spectrum's bins f with c * 2^(-1/6) <= f < c * 2^(1/6) make band c; a window
 // shorter than 16 samples holds nothing.
 
+#include "StrikeFeatures.h"
+
 #include <array>
 #include <cstddef>
 #include <span>
@@ -35,10 +37,11 @@ struct StrikeFingerprint
 double fingerprintBandCentre_Hz(int band);
 
 // The fingerprint of mono samples at any level. Throws NotAStrike (StrikeFeatures.h) when they
-// are empty, not finite, silent (peak below -140 dB of full scale) or hold no strike: their
-// level does not fall, the RMS of 100-300 ms after the onset less than 3 dB below that of the
-// first 30 ms.
-StrikeFingerprint strikeFingerprint(std::span<const double> samples, double sampleRate_Hz);
+// are empty, not finite, silent (peak below -140 dB of full scale) or, with the recording rules,
+// hold no strike: their level does not fall, the RMS of 100-300 ms after the onset less than
+// 3 dB below that of the first 30 ms (a candidate of --match may ring longer).
+StrikeFingerprint strikeFingerprint(std::span<const double> samples, double sampleRate_Hz,
+                                    StrikeRules rules = StrikeRules::recording);
 
 // The RMS of the 69 differences, dB: 0 for the same strike, symmetric.
 double strikeDistance_dB(const StrikeFingerprint& a, const StrikeFingerprint& b);
