@@ -285,6 +285,7 @@ struct MatchResult
 {
     Candidate match;
     double distance = 0.0;          // the mean over the finalist's three strikes
+    double strike_dB = 0.0;         // the chosen strike's whole-strike distance (StrikeFingerprint.h)
     MatchDistance terms;            // the chosen strike's own terms (at its velocity)
     StrikeFeatures features;        // the chosen strike's
     int renders = 0;
@@ -320,6 +321,7 @@ std::string formatJson(const RenderJob& job, const std::vector<MatchCoordinate>&
     root->setProperty("recording", juce::String(std::filesystem::absolute(*job.match).lexically_normal().string()));
     root->setProperty("output", juce::String(std::filesystem::absolute(output).lexically_normal().string()));
     root->setProperty("distance", r.distance);
+    root->setProperty("strike_distance_db", r.strike_dB);
     auto* params = new juce::DynamicObject();
     for (const auto& s : parameterSpecs())
         params->setProperty(juce::String(std::string(s.key)), r.match.params.get(s.id));
@@ -346,8 +348,8 @@ std::string formatSummary(const RenderJob& job, const std::vector<MatchCoordinat
 {
     std::string s;
     char line[256];
-    std::snprintf(line, sizeof line, "snaresim-render: matched %s in %d renders (%.1f s): distance %.3f\n",
-                  job.match->filename().c_str(), r.renders, r.wallSeconds, r.distance);
+    std::snprintf(line, sizeof line, "snaresim-render: matched %s in %d renders (%.1f s): distance %.3f, whole-strike distance %.2f dB\n",
+                  job.match->filename().c_str(), r.renders, r.wallSeconds, r.distance, r.strike_dB);
     s += line;
     std::snprintf(line, sizeof line, "  %-22s %16s %16s\n", "parameter", "start", "match");
     s += line;
@@ -506,14 +508,16 @@ int runMatch(const RenderJob& job)
     if (! chosen.signature || ! chosen.terms)
         throw UserError("no candidate could be rendered (the model refused every one)");
     result.distance = bestMean;
+    result.strike_dB = chosen.terms->strike_dB;
     result.terms = *chosen.terms;
     result.features = chosen.signature->features;
     result.renders = objective.cost();
 
     // The preset file: a comment that says what it is, then the parameters.
     char comment[512];
-    std::snprintf(comment, sizeof comment, "# Matched to %s by snaresim-render --match: distance %.3f, strike velocity %d\n",
-                  job.match->filename().c_str(), result.distance, result.match.velocity);
+    std::snprintf(comment, sizeof comment,
+                  "# Matched to %s by snaresim-render --match: distance %.3f, whole-strike distance %.2f dB, strike velocity %d\n",
+                  job.match->filename().c_str(), result.distance, result.strike_dB, result.match.velocity);
     writeText(presetFile, comment + formatPresetFile("Match " + job.match->stem().string(), result.match.params));
     throwIfInterrupted();
     presetFile.commit();

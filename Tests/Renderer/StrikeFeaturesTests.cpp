@@ -150,7 +150,7 @@ TEST_CASE("match distance: zero for the same strike, growing with the difference
                                            rate, StrikeRules::render);
         const auto d = matchDistance(base, other);
         CHECK(d.total > last);
-        CHECK(d.z[4] == Approx(4.0 * std::tanh(12.0 * std::log2(ratio))).margin(0.05)); // the lowest peak, semitones
+        CHECK(d.z[5] == Approx(4.0 * std::tanh(12.0 * std::log2(ratio))).margin(0.05)); // the lowest peak, semitones
         last = d.total;
     }
 }
