@@ -1,6 +1,7 @@
 // snaresim-render --match: bad recordings and options refused (exit 2, one line, no preset
 // written), FLAC read as WAV is, the known parameters of a SnareSim strike recovered from a start
-// far from them, and the written preset file loaded back by --preset.
+// far from them, the written preset file loaded back by --preset, and the whole-strike distance
+// printed as --distance measures it.
 
 #include "RendererTestSupport.h"
 
@@ -14,6 +15,7 @@
 #include <chrono>
 #include <cmath>
 #include <csignal>
+#include <cstdio>
 #include <fstream>
 #include <numbers>
 #include <thread>
@@ -286,6 +288,78 @@ TEST_CASE("match: the default parameters searched, without the snare ones when t
         CHECK((int) json["renders"] <= 12);
         CHECK(parameterOf(json, "snares_engaged") == (snaresOff ? 0.0 : 1.0));
     }
+}
+
+TEST_CASE("match: the summary, the JSON and the preset file carry the whole-strike distance", "[renderer][match]")
+{
+    TempDir dir;
+    const auto recording = matchInput(dir, "strike.wav", syntheticStrike(48000.0, 1.0)).string();
+    const auto preset = dir.out() / "m.snarepreset";
+    const std::vector<std::string> args { "--match", recording, "-o", preset.string(), "--match-params", "damping", "--match-budget", "12" };
+
+    auto withJson = args;
+    withJson.push_back("--json");
+    const auto run = runRenderer(withJson, dir.root() / "capture");
+    INFO("stderr: " << run.err);
+    REQUIRE(run.exitCode == 0);
+    const auto json = parseJson(run.out);
+    REQUIRE(json.hasProperty("strike_distance_db"));
+    const double strike_dB = json["strike_distance_db"];
+    CHECK(std::isfinite(strike_dB));
+    CHECK(strike_dB > 0.0);
+    CHECK(strike_dB < 60.0);
+    CHECK((double) json["terms"]["whole"] == Approx(strike_dB / 2.0).epsilon(1e-12)); // the term: dB / 2 dB
+    char shown[64];
+    std::snprintf(shown, sizeof shown, "whole-strike distance %.2f dB", strike_dB);
+    CHECK(lines(readText(preset)).front().find(shown) != std::string::npos);
+
+    const auto text = runRenderer(args, dir.root() / "capture");
+    REQUIRE(text.exitCode == 0);
+    CHECK(lines(text.out).front().find(shown) != std::string::npos);
+    CHECK(text.out.find(" whole ") != std::string::npos); // among the terms
+}
+
+TEST_CASE("match: a SnareSim strike matched within 2 dB whole-strike distance, the distance printed as --distance measures it",
+          "[renderer][match][slow]")
+{
+    // A strike of the default drum with four parameters and the velocity changed, matched over
+    // them from the defaults with a modest budget.
+    TempDir dir;
+    const auto recording = (dir.in() / "truth.wav").string();
+    REQUIRE(runRenderer({ "-o", recording, "--hit", "0:84", "--seconds", "1", "--set", "batter_tension=4200", "--set", "damping=40",
+                          "--set", "snare_tension=50", "--set", "strike_position=0.5" },
+                        dir.root() / "capture")
+                .exitCode
+            == 0);
+
+    const auto preset = dir.out() / "match.snarepreset";
+    const auto start = std::chrono::steady_clock::now();
+    const auto run = runRenderer({ "--match", recording, "-o", preset.string(), "--match-params",
+                                   "batter_tension,damping,snare_tension,strike_position,velocity", "--match-budget", "120", "--json" },
+                                 dir.root() / "capture");
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    INFO("stderr: " << run.err);
+    REQUIRE(run.exitCode == 0);
+    const auto json = parseJson(run.out);
+    const double printed_dB = json["strike_distance_db"];
+    const int velocity = json["velocity"];
+    WARN("whole-strike distance " << printed_dB << " dB at velocity " << velocity << " (distance " << (double) json["distance"]
+                                  << ") in " << (int) json["renders"] << " renders, " << seconds << " s");
+    CHECK(printed_dB < 2.0);
+    CHECK((int) json["renders"] <= 120);
+
+    // The written preset at the reported velocity, rendered and measured by --distance.
+    const auto again = dir.out() / "again.wav";
+    REQUIRE(runRenderer({ "--preset", preset.string(), "--hit", "0:" + std::to_string(velocity), "--seconds", "1", "-o", again.string() },
+                        dir.root() / "capture")
+                .exitCode
+            == 0);
+    const auto measured = runRenderer({ "--distance", again.string(), "--ref", dir.in().string() + ":truth.wav", "--json" },
+                                      dir.root() / "capture");
+    INFO("stderr: " << measured.err);
+    REQUIRE(measured.exitCode == 0);
+    const double measured_dB = parseJson(measured.out)["strikes"][0]["distance_db"];
+    CHECK(printed_dB == Approx(measured_dB).margin(0.1));
 }
 
 TEST_CASE("match: the same command writes the same preset file, another seed searches elsewhere", "[renderer][match][slow]")
