@@ -802,19 +802,22 @@ Matching a recording:
   --match FILE          search the drum's parameters for the strike closest to a recorded
                         one (a WAV, AIFF or FLAC file of one strike; channels averaged) and
                         write them as a preset file to -o (--preset FILE and the plug-in's
-                        File button load it). The distance compares the features of
+                        File button load it). The distance is mainly the whole-strike
+                        distance (as --distance measures it), with the features of
                         scripts/snare_features.py (tail centroid, band shares, the 20 / 40
                         dB fall times, lowest strong peak) and the level in third-octave
-                        bands every 10 ms over the first 300 ms, levels normalised
-                        (docs/MATCHING.md). Each candidate is one 0.6 s strike at the
+                        bands every 10 ms over the first 300 ms as smaller terms, levels
+                        normalised (docs/MATCHING.md). Each candidate is one 0.6 s strike at the
                         recording's sample rate (48 kHz outside 32..96 kHz). The search:
                         the start (the defaults, --preset, --set) and a Latin hypercube,
                         then a compass search; the three best struck again at velocity -4
                         and +4, the best mean wins. Prints the best distance as it goes
-                        (stderr; one line in place on a terminal), then the parameters and
+                        (stderr; one line in place on a terminal), then the match's
+                        whole-strike distance to the recording (dB), the parameters and
                         the features of recording and match (--json: one object with
-                        "parameters", every ID to its value, "distance", "velocity",
-                        "terms", the features, "renders", "wall_seconds"). Not a strike
+                        "parameters", every ID to its value, "distance",
+                        "strike_distance_db", "velocity", "terms", the features,
+                        "renders", "wall_seconds"). Not a strike
                         (unreadable, silent, shorter than 100 ms, no 20 dB fall): exit 2.
   --match-params LIST   the comma-separated parameter IDs to search (continuous or whole
                         numbers; not output_gain), "velocity" for the strike's MIDI
