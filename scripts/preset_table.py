@@ -2,7 +2,7 @@
 """Every factory preset's strike beside the recorded snare drums: a Markdown table (numpy, scipy).
 
     python3 scripts/preset_table.py [--build build] [--work DIR] [--seconds 1.5] [--json] [--presets P,P,...]
-                                    [--set KEY=VALUE ...] [--check]
+                                    [--set KEY=VALUE ...] [--check] [--distance-limit DB]
 
 Each factory preset (the renderer's --help lists them) is struck once at velocities 60, 100 and
 127 as the plug-in plays it: snaresim-render --preset NAME --hit 0:VELOCITY, the default model
@@ -23,7 +23,8 @@ A preset plays with its snares off when its render equals the one with snares_en
 Each row also gives the strike's whole-strike distance (docs/MATCHING.md, "The distance of two
 strikes") to its nearest snares-on recording of the dev kits (ForzeeStereo Snare-*,
 ColomboAcousticDrumkit snare-opaque*normal*, BJA_Pacific SN_* and SN3_*, Millo-Drums_v.1 snare1
-and snare3), measured by snaresim-render --distance; it is printed, not checked.
+and snare3), measured by snaresim-render --distance; it is printed, and checked only with
+--distance-limit DB: a snares-on row farther than DB dB fails.
 
 --check: exit status 1 when a checked value lies outside its window or a ratio under 2.5 (the
 table is printed either way), and 77 (the test suite's "skipped") when the recordings are missing.
@@ -187,7 +188,12 @@ def main():
                         help='comma-separated preset names or preset files (default: every factory preset)')
     parser.add_argument('--set', action='append', default=[], metavar='KEY=VALUE', dest='settings',
                         help='passed to every render after the preset (repeatable)')
+    parser.add_argument('--distance-limit', type=float, default=None, metavar='DB',
+                        help='a snares-on row whose distance to its nearest recording exceeds DB fails')
     args = parser.parse_args()
+    if args.distance_limit is not None and not 0.0 < args.distance_limit < 60.0:
+        print('preset_table.py: --distance-limit must be between 0 and 60 dB', file=sys.stderr)
+        return 2
     bad = [v for v in args.settings if not re.fullmatch(r'[a-z0-9_]+=[^\s=]+', v)]
     if bad:
         print('preset_table.py: --set wants KEY=VALUE, got %r' % bad[0], file=sys.stderr)
@@ -229,13 +235,17 @@ def main():
             ratio = row['features']['centroid'] / off['centroid']
         row['centroid_over_snares_off'] = ratio
         row['centroid_over_snares_off_ok'] = None if ratio is None else ratio >= RATIO
+        row['distance_ok'] = (None if args.distance_limit is None or row['snares'] != 'on'
+                              else row['distance_db'] <= args.distance_limit)
 
     failing = [r for r in rows
-               if any(r['checks'][k] in ('low', 'high') for k in TARGETS) or r['centroid_over_snares_off_ok'] is False]
+               if any(r['checks'][k] in ('low', 'high') for k in TARGETS) or r['centroid_over_snares_off_ok'] is False
+               or r['distance_ok'] is False]
     status = 1 if args.check and failing else 0
     if args.json:
         print(json.dumps({'seconds': args.seconds, 'settings': args.settings, 'sample_rate_hz': RATE, 'velocities': VELOCITIES,
-                          'margin': MARGIN, 'ratio': RATIO, 'rows': rows, 'recordings': sets,
+                          'margin': MARGIN, 'ratio': RATIO, 'distance_limit_db': args.distance_limit,
+                          'rows': rows, 'recordings': sets,
                           'windows': windows, 'distance_references': distance_refs()}, indent=1))
         return status
 
@@ -256,7 +266,8 @@ def main():
         ratio = row['centroid_over_snares_off']
         cells.append('-' if row['snares'] == 'off' else 'n/a' if ratio is None
                      else '%.2f' % ratio + ('' if ratio >= RATIO else ' **< %g**' % RATIO))
-        cells += ['%.2f' % row['distance_db'], row['nearest']]
+        cells += ['%.2f' % row['distance_db'] + (' **over %g**' % args.distance_limit if row['distance_ok'] is False else ''),
+                  row['nearest']]
         print('| %s | %d | %s | %s |' % (row['preset'], row['velocity'], row['snares'], ' | '.join(cells)))
 
     # The recordings' ranges, then the windows checked.
@@ -279,8 +290,9 @@ def main():
     total = sum(1 for r in rows if r['snares'] == 'on')
     print('Tail centroid at least %g times the same preset\'s with snares_engaged=off: %d of %d snares-on rows.'
           % (RATIO, ok, total))
-    print('Distance: the whole-strike distance to the nearest of the snares-on recordings %s (docs/MATCHING.md); '
-          'not checked.' % ', '.join('%s %s' % ref for ref in DISTANCE_REFS))
+    print('Distance: the whole-strike distance to the nearest of the snares-on recordings %s (docs/MATCHING.md); %s.'
+          % (', '.join('%s %s' % ref for ref in DISTANCE_REFS),
+             'not checked' if args.distance_limit is None else 'checked on the snares-on rows, at most %g dB' % args.distance_limit))
     print('Rendered %s s at %d Hz, --mic mix, the default model%s; %s.'
           % ('%g' % args.seconds, RATE, ''.join(', --set ' + v for v in args.settings),
              datetime.date.today().isoformat()))

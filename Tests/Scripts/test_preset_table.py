@@ -5,8 +5,9 @@
 
 "Snares Off" with --set snares_engaged=on must render with its snares on (its rows say "on",
 with a snares-off ratio), and without the --set with them off; the settings are named in the
-JSON, and every row has its distance to the nearest snares-on recording. A --set without KEY=VALUE: one line on stderr, exit status 2. Exit status 77 (skipped)
-when the recordings are missing, as preset_table.py --check.
+JSON, and every row has its distance to the nearest snares-on recording. A --set without
+KEY=VALUE: one line on stderr, exit status 2. --distance-limit fails a snares-on row farther
+than it. Exit status 77 (skipped) when the recordings are missing, as preset_table.py --check.
 """
 
 import json
@@ -50,5 +51,19 @@ if plain.returncode == 0 and engaged.returncode == 0:
     check(all(0.0 < (r.get('distance_db') or 0.0) < 60.0 and r.get('nearest') for r in a['rows'] + b['rows']),
           'every row has its distance to the nearest snares-on recording: %r'
           % [(r.get('distance_db'), r.get('nearest')) for r in a['rows'] + b['rows']])
+
+# --distance-limit: a snares-on row farther than the limit fails --check, and says so.
+far = subprocess.run([sys.executable, script, '--build', build, '--seconds', '0.5', '--check', '--presets', 'Studio Default',
+                      '--distance-limit', '1'], capture_output=True, text=True)
+check(far.returncode == 1, 'a preset over a 1 dB distance limit fails --check (exit %d)' % far.returncode)
+check('**over 1**' in far.stdout and 'Studio Default at 60' in far.stdout, 'and its rows say so')
+near = subprocess.run([sys.executable, script, '--build', build, '--seconds', '0.5', '--json', '--presets', 'Studio Default',
+                       '--distance-limit', '59'], capture_output=True, text=True)
+if near.returncode == 0:
+    check(all(r['distance_ok'] for r in json.loads(near.stdout)['rows']), 'within a 59 dB limit every row passes it')
+else:
+    check(False, 'the 59 dB run exits 0 (exit %d: %s)' % (near.returncode, near.stderr.strip()))
+wrong = subprocess.run([sys.executable, script, '--build', build, '--distance-limit', '0'], capture_output=True, text=True)
+check(wrong.returncode == 2 and len(wrong.stderr.strip().splitlines()) == 1, 'a limit of 0 dB is refused in one line')
 
 sys.exit(1 if failures else 0)
