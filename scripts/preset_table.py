@@ -23,8 +23,9 @@ A preset plays with its snares off when its render equals the one with snares_en
 Each row also gives the strike's whole-strike distance (docs/MATCHING.md, "The distance of two
 strikes") to its nearest snares-on recording of the dev kits (ForzeeStereo Snare-*,
 ColomboAcousticDrumkit snare-opaque*normal*, BJA_Pacific SN_* and SN3_*, Millo-Drums_v.1 snare1
-and snare3), measured by snaresim-render --distance; it is printed, and checked only with
---distance-limit DB: a snares-on row farther than DB dB fails.
+and snare3), a snares-off row's to its nearest of ForzeeStereo SnareOff-*, measured by
+snaresim-render --distance; it is printed, and checked only with --distance-limit DB: a row
+farther than DB dB fails.
 
 --check: exit status 1 when a checked value lies outside its window or a ratio under 2.5 (the
 table is printed either way), and 77 (the test suite's "skipped") when the recordings are missing.
@@ -75,6 +76,7 @@ TARGETS = ['centroid', '5-10k', 'fall40']  # checked against the recordings
 DISTANCE_REFS = [('ForzeeStereo', 'Snare-*.wav'), ('ColomboAcousticDrumkit', 'snare-opaque*normal*'),
                  ('BJA_Pacific', 'SN_*.aiff'), ('BJA_Pacific', 'SN3_*.aiff'),
                  ('Millo-Drums_v.1', 'snare1.flac'), ('Millo-Drums_v.1', 'snare3.flac')]
+OFF_DISTANCE_REFS = [('ForzeeStereo', 'SnareOff-*.wav')]  # a snares-off row's: the one snares-off set
 
 
 class Failed(Exception):
@@ -107,16 +109,18 @@ def render_strike(render, wav, preset, velocity, seconds, snares_off, settings=(
         raise Failed('%s: %s' % (' '.join(args), (done.stderr.strip().splitlines() or ['exit %d' % done.returncode])[-1]))
 
 
-def distance_refs():
-    return ['%s:%s' % (os.path.join(airbox_figures.KITS, kit), pattern) for kit, pattern in DISTANCE_REFS]
+def distance_refs(refs=DISTANCE_REFS):
+    return ['%s:%s' % (os.path.join(airbox_figures.KITS, kit), pattern) for kit, pattern in refs]
 
 
-def nearest_recordings(render, files):
-    """Each file's distance to its nearest recording of DISTANCE_REFS and that recording's name."""
+def nearest_recordings(render, files, refs):
+    """Each file's distance to its nearest recording of refs and that recording's name."""
+    if not files:
+        return []
     args = [render, '--json']
     for f in files:
         args += ['--distance', f]
-    for ref in distance_refs():
+    for ref in distance_refs(refs):
         args += ['--ref', ref]
     done = subprocess.run(args, capture_output=True, text=True)
     if done.returncode != 0:
@@ -171,8 +175,10 @@ def measure(render, work, seconds, keep, chosen=None, settings=()):
                          'features': mine, 'snares_off_features': None if snares == 'off' else theirs})
     if not rows:
         raise Failed('%s --help lists no presets' % render)
-    for row, (distance, nearest) in zip(rows, nearest_recordings(render, strikes)):
-        row['distance_db'], row['nearest'] = distance, nearest
+    for snares, refs in (('on', DISTANCE_REFS), ('off', OFF_DISTANCE_REFS)):
+        mine = [(row, strike) for row, strike in zip(rows, strikes) if row['snares'] == snares]
+        for (row, _), (distance, nearest) in zip(mine, nearest_recordings(render, [s for _, s in mine], refs)):
+            row['distance_db'], row['nearest'] = distance, nearest
     return rows
 
 
@@ -235,8 +241,7 @@ def main():
             ratio = row['features']['centroid'] / off['centroid']
         row['centroid_over_snares_off'] = ratio
         row['centroid_over_snares_off_ok'] = None if ratio is None else ratio >= RATIO
-        row['distance_ok'] = (None if args.distance_limit is None or row['snares'] != 'on'
-                              else row['distance_db'] <= args.distance_limit)
+        row['distance_ok'] = None if args.distance_limit is None else row['distance_db'] <= args.distance_limit
 
     failing = [r for r in rows
                if any(r['checks'][k] in ('low', 'high') for k in TARGETS) or r['centroid_over_snares_off_ok'] is False
@@ -246,7 +251,8 @@ def main():
         print(json.dumps({'seconds': args.seconds, 'settings': args.settings, 'sample_rate_hz': RATE, 'velocities': VELOCITIES,
                           'margin': MARGIN, 'ratio': RATIO, 'distance_limit_db': args.distance_limit,
                           'rows': rows, 'recordings': sets,
-                          'windows': windows, 'distance_references': distance_refs()}, indent=1))
+                          'windows': windows, 'distance_references': distance_refs(),
+                          'snares_off_distance_references': distance_refs(OFF_DISTANCE_REFS)}, indent=1))
         return status
 
     def show(v, fmt):
@@ -290,9 +296,10 @@ def main():
     total = sum(1 for r in rows if r['snares'] == 'on')
     print('Tail centroid at least %g times the same preset\'s with snares_engaged=off: %d of %d snares-on rows.'
           % (RATIO, ok, total))
-    print('Distance: the whole-strike distance to the nearest of the snares-on recordings %s (docs/MATCHING.md); %s.'
-          % (', '.join('%s %s' % ref for ref in DISTANCE_REFS),
-             'not checked' if args.distance_limit is None else 'checked on the snares-on rows, at most %g dB' % args.distance_limit))
+    print('Distance: the whole-strike distance (docs/MATCHING.md) to the nearest of the snares-on recordings %s, '
+          'for a snares-off row of %s; %s.'
+          % (', '.join('%s %s' % ref for ref in DISTANCE_REFS), ', '.join('%s %s' % ref for ref in OFF_DISTANCE_REFS),
+             'not checked' if args.distance_limit is None else 'checked, at most %g dB' % args.distance_limit))
     print('Rendered %s s at %d Hz, --mic mix, the default model%s; %s.'
           % ('%g' % args.seconds, RATE, ''.join(', --set ' + v for v in args.settings),
              datetime.date.today().isoformat()))

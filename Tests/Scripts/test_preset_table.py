@@ -5,7 +5,7 @@
 
 "Snares Off" with --set snares_engaged=on must render with its snares on (its rows say "on",
 with a snares-off ratio), and without the --set with them off; the settings are named in the
-JSON, and every row has its distance to the nearest snares-on recording. A --set without
+JSON, and every row has its distance to its nearest recording (snares on or off). A --set without
 KEY=VALUE: one line on stderr, exit status 2. --distance-limit fails a snares-on row farther
 than it. Exit status 77 (skipped) when the recordings are missing, as preset_table.py --check.
 """
@@ -48,8 +48,10 @@ if plain.returncode == 0 and engaged.returncode == 0:
     check([r['snares'] for r in b['rows']] == ['on'] * 3, 'the --set reaches every render: its snares are on')
     check(all((r['centroid_over_snares_off'] or 0.0) > 1.0 for r in b['rows']), 'and brighten its tail')
     check(a['settings'] == [] and b['settings'] == ['snares_engaged=on'], 'the JSON names the settings')
+    check(all(r['nearest'].startswith('SnareOff-') for r in a['rows']) and not any(r['nearest'].startswith('SnareOff-') for r in b['rows']),
+          'a snares-off row is measured against the snares-off recordings, a snares-on row against the snares-on ones')
     check(all(0.0 < (r.get('distance_db') or 0.0) < 60.0 and r.get('nearest') for r in a['rows'] + b['rows']),
-          'every row has its distance to the nearest snares-on recording: %r'
+          'every row has its distance to its nearest recording: %r'
           % [(r.get('distance_db'), r.get('nearest')) for r in a['rows'] + b['rows']])
 
 # --distance-limit: a snares-on row farther than the limit fails --check, and says so.
