@@ -199,7 +199,10 @@ std::optional<std::pair<ParamId, double>> readOldKey(std::string_view key, std::
     const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), number);
     if (text.empty() || ec != std::errc {} || end != text.data() + text.size() || ! std::isfinite(number))
         throw std::invalid_argument("'" + std::string(text) + "' is not a number");
-    return migrateOldKey(key, number);
+    auto migrated = migrateOldKey(key, number);
+    const auto& s = spec(migrated->first);
+    migrated->second = std::clamp(migrated->second, s.minValue, s.maxValue);
+    return migrated;
 }
 
 } // namespace snaresim

@@ -41,9 +41,9 @@ enum class BareNumber
 std::optional<double> parseValue(const ParameterSpec& spec, std::string_view text, BareNumber bare);
 
 // A key of an older schema (the migrations of Parameters.h, as "grid_coarseness") with its value
-// as a bare number: today's ID and value, as a saved state of that schema migrates. Empty when
-// the key is not an old one; throws std::invalid_argument when it is but the text is not a
-// number. Preset files and the renderer's --set read old keys with it.
+// as a bare number: today's ID and value (clamped into its range), as a saved state of that
+// schema migrates. Empty when the key is not an old one; throws std::invalid_argument when it
+// is but the text is not a number. Preset files and the renderer's --set read old keys with it.
 std::optional<std::pair<ParamId, double>> readOldKey(std::string_view key, std::string_view text);
 
 // Toggles and choices: how many names there are, and each one ("off", "on"; "none", "cavity").

@@ -2,7 +2,6 @@
 
 #include "ParameterText.h"
 
-#include <algorithm>
 #include <array>
 #include <charconv>
 #include <fstream>
@@ -105,7 +104,7 @@ PresetFile parsePresetFile(std::string_view text)
             if (! old)
                 fail(lineNo, "unknown parameter " + quoted(key) + " (see snaresim-render --list-params)");
             id = old->first;
-            v = std::clamp(old->second, spec(*id).minValue, spec(*id).maxValue);
+            v = old->second;
         }
         if (seen[(std::size_t) *id])
             fail(lineNo, "parameter " + quoted(key) + " is given twice");

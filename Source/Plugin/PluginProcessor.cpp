@@ -445,12 +445,10 @@ void SnareSimAudioProcessor::applyProgram (int index)
     if (index < 0 || index >= (int) presets.size())
         return;
 
-    // The preset's values over the defaults; "Lower Quality when slow" is this machine's, not the
-    // drum's: it stays as it is.
+    // The preset's values over the defaults.
     snaresim::ParameterSet values;
     for (const auto& [id, value] : presets[(size_t) index].values)
         values.setClamped (id, value);
-    values.setClamped (snaresim::ParamId::keepUp, hostParameters().get (snaresim::ParamId::keepUp));
     applyParameters (values);
 }
 
@@ -458,6 +456,9 @@ void SnareSimAudioProcessor::applyParameters (const snaresim::ParameterSet& valu
 {
     for (const auto& spec : snaresim::parameterSpecs())
     {
+        // "Lower Quality when slow" is this machine's, not the drum's: it stays as it is.
+        if (spec.id == snaresim::ParamId::keepUp)
+            continue;
         if (auto* p = apvts.getParameter (juce::String (std::string (spec.key))))
         {
             const float normalised = p->convertTo0to1 ((float) values.get (spec.id));

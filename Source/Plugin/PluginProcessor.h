@@ -96,8 +96,9 @@ public:
     // as it plays). Any thread but the audio thread.
     snaresim::ParameterSet parameterValues() const { return hostParameters(); }
 
-    // Message thread: sets every parameter to `values` (as a host's automation would, one
-    // gesture each) and builds the new model now if it needs one. Programs and preset files.
+    // Message thread: sets every parameter of the drum to `values` (as a host's automation
+    // would, one gesture each; keep_up, the machine's, stays) and builds the new model now if it
+    // needs one. Programs and preset files.
     void applyParameters (const snaresim::ParameterSet& values);
 
     // True when the model playing now could not be built from the parameters and fell back

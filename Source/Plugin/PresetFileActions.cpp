@@ -12,10 +12,7 @@ juce::String loadPresetFile (SnareSimAudioProcessor& processor, const juce::File
 {
     try
     {
-        auto values = parametersOf (readPresetFile (std::filesystem::path (file.getFullPathName().toStdString())));
-        // "Lower Quality when slow" is this machine's, not the drum's: it stays as it is.
-        values.setClamped (ParamId::keepUp, processor.parameterValues().get (ParamId::keepUp));
-        processor.applyParameters (values);
+        processor.applyParameters (parametersOf (readPresetFile (std::filesystem::path (file.getFullPathName().toStdString()))));
     }
     catch (const PresetFileError& e)
     {

@@ -176,7 +176,7 @@ ParameterOverride parseOverride(std::string_view text)
         if (! old)
             fail("--set: unknown parameter " + inQuotes(key) + " (see --list-params)");
         result.id = old->first;
-        result.value = std::clamp(old->second, spec(old->first).minValue, spec(old->first).maxValue);
+        result.value = old->second;
     }
     result.text = std::string(text);
     return result;

@@ -45,21 +45,29 @@ std::string kitName(const fs::path& kitDir)
     return fs::path(dir).filename().string();
 }
 
+// A recording's fingerprint; one that holds no strike is the user's error, named by `label`.
+StrikeFingerprint fingerprintOfFile(const fs::path& file, const std::string& label)
+{
+    const auto audio = readMonoAudio(file);
+    try
+    {
+        return strikeFingerprint(audio.samples, audio.sampleRate_Hz);
+    }
+    catch (const NotAStrike& e)
+    {
+        throw UserError(label + ": " + e.what());
+    }
+}
+
 // The options that make no sense with --distance (it renders nothing).
 void checkDistanceOptions(const RenderJob& job)
 {
+    // a render's options, and those of the drum and the search
     const std::pair<bool, const char*> refused[] {
-        { ! job.hits.empty(), "--hit" },           { job.midiFile.has_value(), "--midi" },
-        { job.seconds.has_value(), "--seconds" },  { job.energyCsv.has_value(), "--energy-csv" },
-        { job.energyPlot.has_value(), "--energy-plot" }, { job.spectrogram.has_value(), "--spectrogram" },
-        { job.snarePlot.has_value(), "--snare-plot" }, { job.lossless, "--lossless" },
-        { job.bench, "--bench" },                  { job.mic.has_value(), "--mic" },
+        { job.firstRenderOption() != nullptr, job.firstRenderOption() },
         { job.preset.has_value(), "--preset" },    { ! job.overrides.empty(), "--set" },
-        { job.airModel.has_value(), "--model" },   { ! job.airMics.empty(), "--air-mic" },
-        { job.walls.has_value(), "--walls" },      { job.boxSize.has_value(), "--box" },
-        { job.boxMargin.has_value(), "--box-margin" }, { job.threads.has_value(), "--threads" },
-        { job.matchParams.has_value(), "--match-params" }, { job.matchBudget.has_value(), "--match-budget" },
-        { job.matchSeed.has_value(), "--match-seed" },
+        { job.airModel.has_value(), "--model" },   { job.matchParams.has_value(), "--match-params" },
+        { job.matchBudget.has_value(), "--match-budget" }, { job.matchSeed.has_value(), "--match-seed" },
     };
     for (const auto& [given, option] : refused)
         if (given)
@@ -82,15 +90,7 @@ std::vector<Reference> loadReferences(const std::vector<ReferenceSpec>& specs)
             reference.kit = kitName(spec.kitDir);
             reference.file = file;
             reference.name = reference.kit + "/" + fs::path(file).lexically_relative(spec.kitDir).string();
-            const auto audio = readMonoAudio(file);
-            try
-            {
-                reference.fingerprint = strikeFingerprint(audio.samples, audio.sampleRate_Hz);
-            }
-            catch (const NotAStrike& e)
-            {
-                throw UserError(file + " (--ref " + inQuotes(spec.text) + "): " + e.what());
-            }
+            reference.fingerprint = fingerprintOfFile(file, file + " (--ref " + inQuotes(spec.text) + ")");
             references.push_back(std::move(reference));
         }
     }
@@ -102,15 +102,7 @@ StrikeDistances measureDistances(const fs::path& file, const std::string& name, 
     StrikeDistances strike;
     strike.file = fs::absolute(file).lexically_normal();
     strike.name = name;
-    const auto audio = readMonoAudio(file);
-    try
-    {
-        strike.fingerprint = strikeFingerprint(audio.samples, audio.sampleRate_Hz);
-    }
-    catch (const NotAStrike& e)
-    {
-        throw UserError(name + ": " + e.what());
-    }
+    strike.fingerprint = fingerprintOfFile(file, name);
     for (const auto& reference : references)
         strike.distances_dB.push_back(strikeDistance_dB(strike.fingerprint, reference.fingerprint));
     strike.nearest = (std::size_t) (std::min_element(strike.distances_dB.begin(), strike.distances_dB.end()) - strike.distances_dB.begin());

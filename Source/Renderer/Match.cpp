@@ -398,19 +398,8 @@ void writeText(const AtomicFile& file, const std::string& text)
 // The options that make no sense with --match.
 void checkMatchOptions(const RenderJob& job)
 {
-    const std::pair<bool, const char*> refused[] {
-        { ! job.hits.empty(), "--hit" },           { job.midiFile.has_value(), "--midi" },
-        { job.seconds.has_value(), "--seconds" },  { job.energyCsv.has_value(), "--energy-csv" },
-        { job.energyPlot.has_value(), "--energy-plot" }, { job.spectrogram.has_value(), "--spectrogram" },
-        { job.snarePlot.has_value(), "--snare-plot" }, { job.lossless, "--lossless" },
-        { job.bench, "--bench" },                  { job.mic.has_value(), "--mic" },
-        { ! job.airMics.empty(), "--air-mic" },    { job.walls.has_value(), "--walls" },
-        { job.boxSize.has_value(), "--box" },      { job.boxMargin.has_value(), "--box-margin" },
-        { job.threads.has_value(), "--threads" },
-    };
-    for (const auto& [given, option] : refused)
-        if (given)
-            throw UserError(std::string(option) + " cannot be used with --match (see --help)");
+    if (const char* option = job.firstRenderOption())
+        throw UserError(std::string(option) + " cannot be used with --match (see --help)");
 }
 
 } // namespace

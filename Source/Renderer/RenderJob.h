@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace snaresim::render
@@ -132,6 +133,26 @@ struct RenderJob
     int selectedBlockSize() const { return blockSize.value_or(kDefaultBlockSize); }
     int selectedRepeats() const { return benchRepeats.value_or(benchShort ? 1 : kDefaultBenchRepeats); }
     BenchScenario selectedScenario() const { return benchScenario.value_or(BenchScenario::standard); }
+
+    // The first option given that only a render of a file uses (its strikes, length, outputs,
+    // microphone, bench and air box), or nullptr: --match and --distance refuse them.
+    const char* firstRenderOption() const
+    {
+        const std::pair<bool, const char*> options[] {
+            { ! hits.empty(), "--hit" },           { midiFile.has_value(), "--midi" },
+            { seconds.has_value(), "--seconds" },  { energyCsv.has_value(), "--energy-csv" },
+            { energyPlot.has_value(), "--energy-plot" }, { spectrogram.has_value(), "--spectrogram" },
+            { snarePlot.has_value(), "--snare-plot" }, { lossless, "--lossless" },
+            { bench, "--bench" },                  { mic.has_value(), "--mic" },
+            { ! airMics.empty(), "--air-mic" },    { walls.has_value(), "--walls" },
+            { boxSize.has_value(), "--box" },      { boxMargin.has_value(), "--box-margin" },
+            { threads.has_value(), "--threads" },
+        };
+        for (const auto& [given, option] : options)
+            if (given)
+                return option;
+        return nullptr;
+    }
 };
 
 } // namespace snaresim::render
