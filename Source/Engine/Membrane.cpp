@@ -112,8 +112,12 @@ namespace
 
 void Membrane::setNextAt(const int* nodes, const double* values, int count)
 {
-    sumNext += single ? SNARESIM_ON_VECTOR_TARGET(scatterNodes(fNext.data(), nodes, values, count))
-                      : SNARESIM_ON_VECTOR_TARGET(scatterNodes(wNext.data(), nodes, values, count));
+    if (momentsKept)
+        sumNext += single ? SNARESIM_ON_VECTOR_TARGET(scatterNodesMoments(fNext.data(), fX.data(), fY.data(), nodes, values, count, xSumNext, ySumNext))
+                          : SNARESIM_ON_VECTOR_TARGET(scatterNodesMoments(wNext.data(), dX.data(), dY.data(), nodes, values, count, xSumNext, ySumNext));
+    else
+        sumNext += single ? SNARESIM_ON_VECTOR_TARGET(scatterNodes(fNext.data(), nodes, values, count))
+                          : SNARESIM_ON_VECTOR_TARGET(scatterNodes(wNext.data(), nodes, values, count));
 }
 
 void Membrane::nextAt(const int* nodes, double* out, int count) const
@@ -126,7 +130,8 @@ void Membrane::nextAt(const int* nodes, double* out, int count) const
 
 // Double: row by row over the disc's runs of interior nodes (nodes outside stay zero, the
 // fixed rim); single: the whole grid at once (updateGridFloat). Both sum w^{n+1} for the
-// cavity on the way and are built for each vector target (VectorTarget.h).
+// cavity on the way (and its first moments, when kept) and are built for each vector target
+// (VectorTarget.h).
 void Membrane::computeFree(double pressure) { computeFree(pressure, 0.0, 0.0); }
 
 void Membrane::computeFree(double p0, double px, double py)
@@ -134,7 +139,7 @@ void Membrane::computeFree(double p0, double px, double py)
     const int n = g.width();
     const double gain = forceGain();
     const double push = gain * p0; // eq. (22) with the pressure term, force density p
-    const bool tilt = px != 0.0 || py != 0.0;
+    const bool tilt = momentsKept || px != 0.0 || py != 0.0; // the moments come with the tilt's variant
     const bool field = fieldSet;
     fieldSet = false; // a block pressure acts on one step
     if (field)
@@ -148,29 +153,37 @@ void Membrane::computeFree(double p0, double px, double py)
                                           : SNARESIM_ON_VECTOR_TARGET(updateGridFloat<false, false>));
         sumNext = update(fNext.data() + n, fNow.data() + n, fPrev.data() + n, fMask.data() + n, fX.data() + n, fY.data() + n,
                          field ? fField.data() + n : nullptr, n, n * (n - 2), r, cl, cs, (float) push, (float) (gain * px),
-                         (float) (gain * py));
+                         (float) (gain * py), xSumNext, ySumNext);
         return;
     }
     const auto update = tilt ? (field ? SNARESIM_ON_VECTOR_TARGET(updateRow<true, true>)
                                       : SNARESIM_ON_VECTOR_TARGET(updateRow<true, false>))
                              : (field ? SNARESIM_ON_VECTOR_TARGET(updateRow<false, true>)
                                       : SNARESIM_ON_VECTOR_TARGET(updateRow<false, false>));
-    double sum = 0.0;
+    double sum = 0.0, sx = 0.0, sy = 0.0;
     for (int iy = 1; iy < n - 1; ++iy)
     {
         const int begin = iy * n + rowBegin[(size_t) iy];
         const int count = rowEnd[(size_t) iy] - rowBegin[(size_t) iy];
         if (count <= 0)
             continue;
-        sum += update(wNext.data() + begin, wNow.data() + begin, wPrev.data() + begin, field ? dField.data() + begin : nullptr, n, count,
-                      a0, a1, b0, b1, tilt ? push + gain * (px * g.x(rowBegin[(size_t) iy]) + py * g.x(iy)) : push,
-                      tilt ? gain * px * h : 0.0);
+        const double y = g.x(iy);
+        double along = 0.0;
+        const double row = update(wNext.data() + begin, wNow.data() + begin, wPrev.data() + begin, field ? dField.data() + begin : nullptr,
+                                  dX.data() + begin, n, count, a0, a1, b0, b1, tilt ? push + gain * py * y : push, gain * px, along);
+        sum += row;
+        sx += along;
+        sy += y * row;
     }
     sumNext = sum;
+    xSumNext = sx;
+    ySumNext = sy;
 }
 
 std::array<double, 2> Membrane::tiltNext() const
 {
+    if (momentsKept)
+        return { h * h * xSumNext, h * h * ySumNext };
     const int n = g.width();
     double sx = 0.0, sy = 0.0;
     if (single)
@@ -268,12 +281,12 @@ void Membrane::applyForce(const GridDistribution& d, double force)
         {
             const float before = fNext[(size_t) i];
             fNext[(size_t) i] = (float) ((double) before + dw);
-            sumNext += (double) fNext[(size_t) i] - (double) before;
+            moved(i, (double) fNext[(size_t) i] - (double) before);
         }
         else
         {
             wNext[(size_t) i] += dw;
-            sumNext += dw;
+            moved(i, dw);
         }
     }
 }
@@ -353,7 +366,7 @@ void Membrane::advance()
 
 void Membrane::clear()
 {
-    sumNext = 0.0;
+    sumNext = xSumNext = ySumNext = 0.0;
     for (auto* w : { &wNext, &wNow, &wPrev })
         std::fill(w->begin(), w->end(), 0.0);
     for (auto* w : { &fNext, &fNow, &fPrev })

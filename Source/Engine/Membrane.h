@@ -42,8 +42,12 @@ public:
     // The same with a pressure p0 + px x + py y (Pa; px, py in Pa/m, x and y from the head's
     // centre): the cavity's and the outside air's (OutsideAirCoupling.h).
     void computeFree(double p0_Pa, double px_Pa_per_m, double py_Pa_per_m);
-    // h^2 sum(x w), h^2 sum(y w) at n+1: the head's first moments (m^4), a pass over the grid.
+    // h^2 sum(x w), h^2 sum(y w) at n+1: the head's first moments (m^4); a pass over the grid
+    // unless they are kept.
     std::array<double, 2> tiltNext() const;
+    // Keep the first moments as the sum is kept: summed in computeFree, moved by every force
+    // update; for a coupling that reads them every step (OutsideAirCoupling).
+    void keepMoments() { momentsKept = true; }
     // sum(w^{n+1}) over square blocks of side x side nodes (block (bx, by) holds the nodes with
     // ix / side == bx, iy / side == by) into out[by * blocks + bx], blocks = ceil(N / side), in
     // double: h^2 times it is a block's volume. A pass over the grid: the pressure microphones'
@@ -93,11 +97,11 @@ public:
         if (single)
         {
             const float v = (float) value;
-            sumNext += (double) v - (double) fNext[(size_t) node];
+            moved(node, (double) v - (double) fNext[(size_t) node]);
             fNext[(size_t) node] = v;
             return;
         }
-        sumNext += value - wNext[(size_t) node];
+        moved(node, value - wNext[(size_t) node]);
         wNext[(size_t) node] = value;
     }
     // The same at count distinct nodes.
@@ -154,6 +158,18 @@ private:
     float r = 0, cl = 0, cs = 0;            // the same as an increment, for the float state (computeFree)
     std::vector<int> rowBegin, rowEnd;      // columns holding interior nodes, per row
     double sumNext = 0.0;                   // sum(w^{n+1})
+    bool momentsKept = false;               // keepMoments
+    double xSumNext = 0.0, ySumNext = 0.0;  // sum(x w^{n+1}), sum(y w^{n+1}), when kept
+    // w^{n+1} at a node moved by dw: the sums kept follow
+    void moved(int node, double dw)
+    {
+        sumNext += dw;
+        if (momentsKept)
+        {
+            xSumNext += (single ? (double) fX[(size_t) node] : dX[(size_t) node]) * dw;
+            ySumNext += (single ? (double) fY[(size_t) node] : dY[(size_t) node]) * dw;
+        }
+    }
     const double* response = nullptr;       // per-node response to a force (setResponse), or 1
     bool single = false;
     std::vector<double> wNext, wNow, wPrev; // double precision, else empty

@@ -2,29 +2,33 @@
 // compiled once per vector target by PerVectorTarget.inl: no include guard, no includes.
 
 // One row of eq. (22): out = c0 w + c1 (4 neighbours of w) + d0 wp + d1 (4 neighbours of wp) + push
-// (+ slope m along the row with Tilt, + field[m] with Field), for `count` nodes that all lie inside
-// the disc; returns the sum of out.
+// (+ px xs[m] with Tilt, + field[m] with Field), for `count` nodes that all lie inside the disc;
+// returns the sum of out, and with Tilt sets along to the sum of xs[m] out[m] (the row's first
+// moment in x).
 template <bool Tilt, bool Field>
 double updateRow(double* __restrict out, const double* __restrict w, const double* __restrict wp,
-                 const double* __restrict field, int n, int count, double c0, double c1, double d0,
-                 double d1, double push, double slope)
+                 const double* __restrict field, const double* __restrict xs, int n, int count, double c0,
+                 double c1, double d0, double d1, double push, double px, double& along)
 {
-    double sum = 0.0; // summed on the way (vector lanes)
-#pragma omp simd reduction(+ : sum)
+    double sum = 0.0, moment = 0.0; // summed on the way (vector lanes)
+#pragma omp simd reduction(+ : sum, moment)
     for (int m = 0; m < count; ++m)
     {
         const double nb = w[m - 1] + w[m + 1] + w[m - n] + w[m + n];
         const double nbp = wp[m - 1] + wp[m + 1] + wp[m - n] + wp[m + n];
         double next;
         if constexpr (Tilt)
-            next = c0 * w[m] + c1 * nb + d0 * wp[m] + d1 * nbp + (push + slope * (double) m);
+            next = c0 * w[m] + c1 * nb + d0 * wp[m] + d1 * nbp + (push + px * xs[m]);
         else
             next = c0 * w[m] + c1 * nb + d0 * wp[m] + d1 * nbp + push;
         if constexpr (Field)
             next += field[m];
         out[m] = next;
         sum += next;
+        if constexpr (Tilt)
+            moment += xs[m] * next;
     }
+    along = moment;
     return sum;
 }
 
@@ -35,16 +39,16 @@ double updateRow(double* __restrict out, const double* __restrict w, const doubl
 // Laplacian, so that no coefficient near 2 multiplies w: a float
 // coefficient's rounding then moves the modes by parts in 1e8 of their small restoring term,
 // not of 2 w. Returns the sum of out, in double.
-// With Tilt, a pressure px x + py y is added (xs, ys: x and y times the mask); with Field, a push
-// per node (field, times the mask).
+// With Tilt, a pressure px x + py y is added (xs, ys: x and y times the mask), and sx, sy are set
+// to sum(xs out), sum(ys out) in double; with Field, a push per node (field, times the mask).
 template <bool Tilt, bool Field>
 double updateGridFloat(float* __restrict out, const float* __restrict w, const float* __restrict wp,
                        const float* __restrict mask, const float* __restrict xs,
                        const float* __restrict ys, const float* __restrict field, int n, int count,
-                       float r, float cl, float cs, float push, float px, float py)
+                       float r, float cl, float cs, float push, float px, float py, double& sx, double& sy)
 {
-    double sum = 0.0; // summed on the way, in double (vector lanes: the order is not the rows')
-#pragma omp simd reduction(+ : sum)
+    double sum = 0.0, ax = 0.0, ay = 0.0; // summed on the way, in double (vector lanes: the order is not the rows')
+#pragma omp simd reduction(+ : sum, ax, ay)
     for (int m = 0; m < count; ++m)
     {
         const float c = w[m], v = c - wp[m];
@@ -61,7 +65,14 @@ double updateGridFloat(float* __restrict out, const float* __restrict w, const f
             next = mask[m] * (c + (r * v + cl * (nb - 4.0f * c) + cs * ((nb - nbp) - 4.0f * v) + p));
         out[m] = next;
         sum += (double) next;
+        if constexpr (Tilt)
+        {
+            ax += (double) xs[m] * (double) next;
+            ay += (double) ys[m] * (double) next;
+        }
     }
+    sx = ax;
+    sy = ay;
     return sum;
 }
 // sum(xs w), sum(ys w) over count nodes, in double (vector lanes).
@@ -199,6 +210,26 @@ void blockSecondDifferences(const Real* __restrict next, const Real* __restrict 
             out[by * bxs + bx] = s;
         }
     }
+}
+// The same, also adding the changes of sum(xs w), sum(ys w) to dx, dy.
+template <class Real>
+double scatterNodesMoments(Real* __restrict w, const Real* __restrict xs, const Real* __restrict ys,
+                           const int* __restrict nodes, const double* __restrict values, int count, double& dx, double& dy)
+{
+    double change = 0.0, cx = 0.0, cy = 0.0;
+#pragma omp simd reduction(+ : change, cx, cy)
+    for (int j = 0; j < count; ++j)
+    {
+        const Real v = (Real) values[j];
+        const double d = (double) v - (double) w[nodes[j]];
+        change += d;
+        cx += (double) xs[nodes[j]] * d;
+        cy += (double) ys[nodes[j]] * d;
+        w[nodes[j]] = v;
+    }
+    dx += cx;
+    dy += cy;
+    return change;
 }
 // w at count nodes into out (a gather).
 template <class Real>

@@ -21,7 +21,15 @@ struct HeadPressure
 class OutsideAirCoupling
 {
 public:
-    OutsideAirCoupling(Membrane& batterHead, Membrane& carryHead, OutsideAir& outsideAir) : batter(batterHead), carry(carryHead), air(outsideAir) {}
+    // The heads keep their first moments for it (Membrane::keepMoments): no pass of its own.
+    OutsideAirCoupling(Membrane& batterHead, Membrane& carryHead, OutsideAir& outsideAir) : batter(batterHead), carry(carryHead), air(outsideAir)
+    {
+        if (air.active())
+        {
+            batter.keepMoments();
+            carry.keepMoments();
+        }
+    }
 
     // The pressure on each head at time n (q_m = V_b - V_c, q_d = V_b + V_c, q_s = X_b + X_c, q_t = X_b - X_c).
     HeadPressure onBatter() const
