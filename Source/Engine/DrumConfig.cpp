@@ -342,6 +342,7 @@ DrumConfig mapParametersAt(const ParameterSet& p, double sampleRate_Hz, double c
     c.cavity.shellDepth_m = p.get(ParamId::shellDepth);
     c.cavity.gridShellDepth_m = spec(ParamId::shellDepth).minValue;
     c.outside.enabled = p.get(ParamId::outsideAir) > 0.5;
+    c.outside.nearField = p.get(ParamId::nearField) > 0.5;
     c.air.sigma_m = p.get(ParamId::airLoss);
     // ParamId::keepUp is the plug-in's: it lowers the bandwidth before the mapping.
     // ParamId::offlineAirBox is the host's, not the drum's: the plug-in reads it to choose the air

@@ -135,6 +135,7 @@ struct OutsideAirSpec
     // wavenumber j_mn / R up to this (rad/m; 0: none; 75: four 2 cm cells a wavelength), on at
     // most this share of each head's kinetic energy, with this share of the largest damper the
     // explicit coupling allows across each channel's compliance (0: lossless).
+    bool nearField = true;                 // the near field with the channels (the schema's near_field)
     double nearFieldUpTo_per_m = 60.0;
     double nearFieldReserve = 0.08;
     double nearFieldDamping = 1.0;

@@ -29,13 +29,13 @@ constexpr std::array<ParameterSpec, kNumParameters> kSpecs {{
       "Tension of the batter (top) head; 3050 N/m puts its (0,1) mode near 200 Hz", C, "", "main" },
     { P::snareTension, "snare_tension", "Snare tension", "N", 10.0, 100.0, 20.0, S::linear, N::coefficients,
       "Tension of each snare wire", C, "", "main" },
-    { P::damping, "damping", "Damping", "%", 0.0, 100.0, 75.0, S::linear, N::coefficients,
+    { P::damping, "damping", "Damping", "%", 0.0, 100.0, 44.0, S::linear, N::coefficients,
       "Muffling of both heads: the lowest modes ring for 4 s at 0 % down to 0.15 s at 100 %", C, "", "main" },
     { P::carryTension, "carry_tension", "Carry tension", "N/m", 800.0, 5000.0, 2060.0, S::linear, N::coefficients,
       "Tension of the carry (snare-side) head; 2060 N/m puts its (0,1) mode near 300 Hz", C, "", "heads" },
     { P::carryFollows, "carry_follows", "Carry follows batter", "", 0.0, 1.0, 0.0, S::linear, N::coefficients,
       "Carry tension follows the membrane tension (keeping the default ratio) instead of its own control", B, "off|on", "heads" },
-    { P::highDamping, "high_damping", "High damping", "m^2/s", 0.0, 3.0e-3, 2.1e-4, S::linear, N::coefficients,
+    { P::highDamping, "high_damping", "High damping", "m^2/s", 0.0, 3.0e-3, 4.0e-4, S::linear, N::coefficients,
       "Frequency-dependent loss sigma1 of both heads: higher dulls the overtones", C, "", "heads" },
     { P::shellDepth, "shell_depth", "Shell depth", "m", 0.05, 0.25, 0.14, S::linear, N::coefficients,
       "Depth of the shell: the enclosed air's volume and so its stiffness", C, "", "heads" },
@@ -80,11 +80,11 @@ constexpr std::array<ParameterSpec, kNumParameters> kSpecs {{
     { P::offlineAirBox, "offline_airbox", "Air box when bouncing", "", 0.0, 1.0, 1.0, S::linear, N::coefficients,
       "When the host renders offline (a bounce), the drum plays in the air box whatever the air model says; off: bounces play the air model. Read by the plug-in only: the renderer plays the air model",
       B, "off|on", "model" },
-    { P::headPrecision, "head_precision", "Head arithmetic", "", 0.0, 1.0, 1.0, S::linear, N::newModel,
-      "The batter's state and update (eq. 22) in double precision, or in single: the batter a quarter to a third cheaper, the energy identity held to float round-off (BENCHMARKS.md); the carry head, which the snares strike, and the air box's heads always run in double",
+    { P::headPrecision, "head_precision", "Head arithmetic", "", 0.0, 1.0, 0.0, S::linear, N::newModel,
+      "The batter's state and update (eq. 22) in double precision, or in single: the batter a quarter to a third cheaper, the energy identity held to float round-off (BENCHMARKS.md), but with the outside air the snares' tail about 5 % darker, so double by default; the carry head, which the snares strike, and the air box's heads always run in double",
       K, "double|single", "model" },
-    { P::outsideAir, "outside_air", "Outside air", "", 0.0, 1.0, 0.0, S::linear, N::newModel,
-      "The air around the heads with the cavity: its mass lowers the heads' lowest modes and it carries their sound away (radiation channels calibrated against the air box), and the air sloshing beside them weighs on their higher modes (the near field); the air box has its own",
+    { P::outsideAir, "outside_air", "Outside air", "", 0.0, 1.0, 1.0, S::linear, N::newModel,
+      "The air around the heads with the cavity: its mass lowers the heads' lowest modes and it carries their sound away (radiation channels calibrated against the air box); the air box has its own",
       B, "off|on", "heads" },
     { P::micTopHeight, "mic_top_height", "Top mic height", "m", 0.01, 0.3, 0.04, S::linear, N::coefficients,
       "Height of the top microphone above the batter head", C, "", "output" },
@@ -99,6 +99,9 @@ constexpr std::array<ParameterSpec, kNumParameters> kSpecs {{
     { P::keepUp, "keep_up", "Lower Quality when slow", "", 0.0, 1.0, 1.0, S::linear, N::coefficients,
       "In real time, where this machine is measured not to keep up with the drum at the chosen Quality in the host's blocks, a lower bandwidth that keeps up plays and the editor says so; off: the chosen Quality always plays. Read by the plug-in only: bounces and the renderer play the chosen Quality",
       B, "off|on", "model" },
+    { P::nearField, "near_field", "Near field", "", 0.0, 1.0, 0.0, S::linear, N::newModel,
+      "With the outside air: the air sloshing beside the heads weighs on their higher modes and lowers them 7-11 %, as the air box does; the drum then costs about 1.5 times as much (BENCHMARKS.md), so it is off by default; the air box has its own",
+      B, "off|on", "heads" },
 }};
 
 constexpr bool tableInOrder()
@@ -159,6 +162,13 @@ constexpr std::array<ParameterMigration, 4> kMigrations {{
     { 3, "grid_coarseness", P::bandwidth, &qualityBandwidth_Hz },
 }};
 
+// States of versions 0 to 3 without the outside air's key had no outside air (it was off by
+// default); those with it had its near field, which became a parameter of its own in version 4.
+constexpr std::array<ImpliedParameter, 2> kImplied {{
+    { 4, P::outsideAir, 0.0 },
+    { 4, P::nearField, 1.0 },
+}};
+
 constexpr double kLongestT60_s = 4.0, kShortestT60_s = 0.15;
 } // namespace
 
@@ -175,6 +185,8 @@ std::string_view groupTitle(std::string_view key)
 }
 
 std::span<const ParameterMigration> parameterMigrations() { return kMigrations; }
+
+std::span<const ImpliedParameter> impliedParameters() { return kImplied; }
 
 std::optional<std::pair<ParamId, double>> migrateParameter(int stateVersion, std::string_view key, double value)
 {

@@ -64,6 +64,8 @@ enum class ParamId : std::size_t
     micRoomAngle,
     // the plug-in's real-time fallback (appended likewise)
     keepUp,
+    // the near field of the outside air, apart from its channels (appended likewise)
+    nearField,
     count
 };
 
@@ -150,7 +152,7 @@ private:
 
 // Saved states: the version written now, and how older versions' parameters map onto today's
 // (a renamed key, its value converted). A key that is neither today's nor migrated is ignored.
-inline constexpr int kStateVersion = 3;
+inline constexpr int kStateVersion = 4;
 struct ParameterMigration
 {
     int beforeVersion;            // applies to states older than this
@@ -159,6 +161,15 @@ struct ParameterMigration
     double (*convert)(double);    // nullptr: the value as it was
 };
 std::span<const ParameterMigration> parameterMigrations();
+// A parameter that states older than beforeVersion may not hold, and the value that keeps their
+// drum: a key that did not exist yet, or a default that changed since.
+struct ImpliedParameter
+{
+    int beforeVersion;
+    ParamId id;
+    double value;
+};
+std::span<const ImpliedParameter> impliedParameters();
 // Today's ID and value for a key read from a state of stateVersion; empty when unknown.
 std::optional<std::pair<ParamId, double>> migrateParameter(int stateVersion, std::string_view key, double value);
 // Today's ID and value for a key that is no longer today's (any version's migration); empty

@@ -33,8 +33,8 @@ bool PluginState::read (juce::AudioProcessorValueTreeState& parameters, const vo
     if (xml == nullptr || ! xml->hasTagName (treeType))
         return false;
 
-    // Older versions' keys migrate as the schema says; unknown keys are ignored; missing
-    // parameters take their defaults.
+    // Older versions' keys migrate as the schema says, and what they did not hold is implied
+    // (impliedParameters); unknown keys are ignored; missing parameters take their defaults.
     const int stateVersion = xml->getIntAttribute (versionAttribute, 0);
     std::array<std::optional<double>, kNumParameters> values {};
 
@@ -50,6 +50,10 @@ bool PluginState::read (juce::AudioProcessorValueTreeState& parameters, const vo
         if (const auto migrated = migrateParameter (stateVersion, child->getStringAttribute ("id").toStdString(), value))
             values[static_cast<std::size_t> (migrated->first)] = migrated->second;
     }
+
+    for (const auto& implied : impliedParameters())
+        if (stateVersion < implied.beforeVersion && ! values[static_cast<std::size_t> (implied.id)].has_value())
+            values[static_cast<std::size_t> (implied.id)] = implied.value;
 
     // A complete tree: replaceState leaves parameters missing from it at their current values.
     // Its children in the order the processor's own tree has them (by ID), so that a restored

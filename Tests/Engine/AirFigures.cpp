@@ -453,7 +453,7 @@ TwoDrums twoDrums(char** v, int count)
             cfg.mallet.mass_kg = std::atof(a.c_str());
     }
     d.realTime = cfg;
-    d.realTime.outside.enabled = true;
+    d.realTime.outside.enabled = d.realTime.outside.nearField = true;
     if (! nearField)
         d.realTime.outside.nearFieldUpTo_per_m = 0.0;
     d.realTime.cavity.modesUpTo_Hz = modesUpTo_Hz;

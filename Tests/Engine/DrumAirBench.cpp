@@ -53,7 +53,7 @@ int cavityModes()
         {
             DrumConfig cfg;
             cfg.sampleRate_Hz = 48000.0;
-            cfg.outside.enabled = true;
+            cfg.outside.enabled = cfg.outside.nearField = true;
             cfg.cavity.modesUpTo_Hz = upTo;
             const double s = timeDrum(cfg, 2.0, true).perAudioSecond;
             std::printf("  cavity modes to %4.0f Hz (%3d modes): %.3f (%.2fx real time)\n", upTo, (int) CavityModes::below(cfg.cavity, upTo, cfg.batter.radius_m).size(), s,

@@ -318,7 +318,7 @@ TEST_CASE("the air box's air loads the batter's higher modes with the near field
     box.air.size_m = { 0.7, 0.7, 0.7 }; // near-field loading: a 1.3 m box moves these modes by 0.6 % at most
     box.air.threads = 2;
     DrumConfig realTime = cfg;
-    realTime.outside.enabled = true;
+    realTime.outside.enabled = realTime.outside.nearField = true;
     DrumConfig channelsOnly = realTime;
     channelsOnly.outside.nearFieldUpTo_per_m = 0.0;
     const int steps = 1 << 14;

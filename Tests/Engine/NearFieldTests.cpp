@@ -17,7 +17,7 @@ namespace
 {
 DrumConfig withNearField(DrumConfig c)
 {
-    c.outside.enabled = true; // the near field comes with the outside air
+    c.outside.enabled = c.outside.nearField = true; // the near field comes with the outside air
     return c;
 }
 } // namespace

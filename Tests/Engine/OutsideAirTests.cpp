@@ -15,7 +15,7 @@ namespace
 {
 DrumConfig withOutsideAir(DrumConfig c)
 {
-    c.outside.enabled = true;
+    c.outside.enabled = c.outside.nearField = true; // as the air box has it: the channels and the near field
     return c;
 }
 } // namespace
@@ -125,4 +125,24 @@ TEST_CASE("outside air: a config that enables it builds its channels, and the ai
     DrumConfig bad = cfg;
     bad.outside.monopole.mass = 0.0;
     CHECK_THROWS_WITH(bad.validate(), Catch::Contains("outside-air channel's mass"));
+}
+
+TEST_CASE("outside air: the schema's default plays the channels, the near field on its own switch", "[outside]")
+{
+    ParameterSet p; // the defaults
+    const DrumConfig channels = makeDrumConfig(p, 48000.0);
+    CHECK(channels.outside.enabled);
+    CHECK_FALSE(channels.outside.nearField);
+    Drum drum(channels);
+    CHECK(drum.outsideAir().active());
+    CHECK_FALSE(drum.nearFieldAir().active());
+    p.set(ParamId::nearField, 1.0);
+    Drum complete(makeDrumConfig(p, 48000.0));
+    CHECK(complete.outsideAir().active());
+    CHECK(complete.nearFieldAir().active());
+    // the near field comes with the outside air only
+    p.set(ParamId::outsideAir, 0.0);
+    Drum none(makeDrumConfig(p, 48000.0));
+    CHECK_FALSE(none.outsideAir().active());
+    CHECK_FALSE(none.nearFieldAir().active());
 }

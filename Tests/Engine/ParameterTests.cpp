@@ -46,15 +46,18 @@ TEST_CASE("the defaults give the 14 x 5.5 inch drum of docs/MODEL.md", "[paramet
     CHECK(c.batter.tension_N_per_m == 3050.0);
     CHECK(c.batter.density_kg_per_m2 == Approx(0.353));
     CHECK(c.mallet.mass_kg == 0.028);
-    CHECK(c.batter.sigma0_per_s == Approx(3.0 * std::log(10.0) / (4.0 * std::pow(0.15 / 4.0, 0.75)))); // damping 75 %
+    CHECK(c.batter.sigma0_per_s == Approx(3.0 * std::log(10.0) / (4.0 * std::pow(0.15 / 4.0, 0.44)))); // damping 44 %
     CHECK(c.mallet.stiffness == 4.0e9);
-    CHECK(c.batter.sigma1_m2_per_s == Approx(2.1e-4));
+    CHECK(c.batter.sigma1_m2_per_s == Approx(4.0e-4));
     // The grid is designed for the largest tension the control allows.
     CHECK(c.batter.gridTension_N_per_m == spec(ParamId::batterTension).maxValue);
-    // Real time by default: the quadratised snare solve, heads and wires at twice the bound.
+    // Real time by default: the quadratised snare solve, the grids of the default bandwidth, the
+    // outside air on, without its near field.
     CHECK(c.snares.scheme == CollisionScheme::quadratised);
-    CHECK(c.batter.gridCoarseness == 2.0);
-    CHECK(c.snares.gridCoarseness == 2.0);
+    CHECK(c.batter.gridCoarseness == gridCoarsenessFor(spec(ParamId::bandwidth).defaultValue));
+    CHECK(c.snares.gridCoarseness == c.batter.gridCoarseness);
+    CHECK(c.outside.enabled);
+    CHECK_FALSE(c.outside.nearField);
 }
 
 TEST_CASE("the quality and solver settings reach the heads, the wires and the snare solve", "[parameters]")
@@ -157,6 +160,7 @@ struct GridShape
     double airSpacing; // 0 without the air box
     bool singleHeads;
     bool outsideAir;
+    bool nearField;
     bool operator==(const GridShape&) const = default;
 };
 
@@ -164,7 +168,8 @@ GridShape shapeOf(const Drum& d)
 {
     return { d.batter().grid().numInterior(), d.carry().grid().numInterior(), d.snareWires().intervals(),
              d.snareContact().numPoints(), d.config().snares.scheme, d.config().cavity.model,
-             d.airBox().active() ? d.airBox().air().spacing() : 0.0, d.batter().singlePrecision(), d.outsideAir().active() };
+             d.airBox().active() ? d.airBox().air().spacing() : 0.0, d.batter().singlePrecision(), d.outsideAir().active(),
+             d.nearFieldAir().active() };
 }
 } // namespace
 
@@ -219,7 +224,7 @@ TEST_CASE("a change the schema says rebuilds the model changes the grids or the 
                                   || a.airSpacing != b.airSpacing;
             changed = s.needs == ChangeNeeds::newGrid ? gridsDiffer
                                                       : (a.scheme != b.scheme || a.air != b.air || a.singleHeads != b.singleHeads
-                                                         || a.outsideAir != b.outsideAir);
+                                                         || a.outsideAir != b.outsideAir || a.nearField != b.nearField);
             if (changed)
                 break;
         }
@@ -231,7 +236,7 @@ TEST_CASE("a change the schema says rebuilds the model changes the grids or the 
 
 TEST_CASE("old states' keys migrate as the schema says", "[parameters]")
 {
-    CHECK(kStateVersion == 3);
+    CHECK(kStateVersion == 4);
     const auto decay = migrateParameter(1, "batter_decay", 4.0);
     REQUIRE(decay.has_value());
     CHECK(decay->first == ParamId::damping);

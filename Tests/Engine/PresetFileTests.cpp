@@ -157,9 +157,9 @@ TEST_CASE("factory presets: read from their files, in program order, each differ
     ParameterSet funk;
     REQUIRE(applyPreset("tight funk", funk));
     CHECK(funk.get(ParamId::batterTension) == 4800.0);
-    CHECK(funk.get(ParamId::snareTension) == 44.5);
-    CHECK(funk.get(ParamId::damping) == 75.0);
-    CHECK(funk.get(ParamId::malletStiffness) == 1.88e9);
+    CHECK(funk.get(ParamId::snareTension) == 56.0);
+    CHECK(funk.get(ParamId::damping) == 70.0);
+    CHECK(funk.get(ParamId::malletStiffness) == 5.9e9);
     ParameterSet off;
     REQUIRE(applyPreset("Snares Off", off));
     CHECK(off.get(ParamId::snaresEngaged) == 0.0);

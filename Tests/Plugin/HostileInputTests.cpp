@@ -83,7 +83,8 @@ TEST_CASE ("hostile states: random bytes, truncated, version 1, another plug-in'
     }
 
     // Every truncation of a good state: what can still be read is restored, the rest takes
-    // its default (or, when nothing can be read, the state is ignored).
+    // its default, or what an older state implies where the version is cut off
+    // (snaresim::impliedParameters), or, when nothing can be read, the state is ignored.
     int truncatedRead = 0;
     const auto defaults = [&]
     {
@@ -100,7 +101,10 @@ TEST_CASE ("hostile states: random bytes, truncated, version 1, another plug-in'
         for (size_t i = 0; i < now.size(); ++i)
         {
             INFO ("a state truncated to " << length << " bytes, parameter " << i);
-            CHECK ((now[i] == before[i] || now[i] == Approx (defaults[i]).margin (1.0e-6)));
+            bool implied = false;
+            for (const auto& p : snaresim::impliedParameters()) // toggles: normalised, their values
+                implied = implied || ((size_t) p.id == i && now[i] == Approx (p.value).margin (1.0e-6));
+            CHECK ((now[i] == before[i] || now[i] == Approx (defaults[i]).margin (1.0e-6) || implied));
             changed = changed || now[i] != before[i];
         }
         truncatedRead += changed ? 1 : 0;
@@ -163,15 +167,26 @@ TEST_CASE ("hostile states: random bytes, truncated, version 1, another plug-in'
             ++partial;
         }
 
-    // A SnareSim state that names nothing: every parameter at its default.
+    // A SnareSim state that names nothing: every parameter at its default; without a version
+    // (version 0), what such an old state implies instead (snaresim::impliedParameters).
+    for (const bool versioned : { true, false })
     {
-        const auto block = xmlState (juce::XmlElement (snaresim::plugin::PluginState::treeType));
+        juce::XmlElement empty (snaresim::plugin::PluginState::treeType);
+        if (versioned)
+            empty.setAttribute (snaresim::plugin::PluginState::versionAttribute, snaresim::kStateVersion);
+        const auto block = xmlState (empty);
         proc.setStateInformation (block.getData(), (int) block.getSize());
         ++tried;
-        for (auto* p : proc.getParameters())
+        for (size_t i = 0; i < proc.getParameters().size(); ++i)
         {
-            INFO (p->getName (64));
-            CHECK (p->getValue() == Approx (p->getDefaultValue()).margin (1.0e-6));
+            auto* p = proc.getParameters()[(int) i];
+            INFO (p->getName (64) << (versioned ? ", today's version" : ", version 0"));
+            double expected = p->getDefaultValue();
+            if (! versioned)
+                for (const auto& implied : snaresim::impliedParameters()) // toggles: normalised, their values
+                    if ((size_t) implied.id == i)
+                        expected = implied.value;
+            CHECK (p->getValue() == Approx (expected).margin (1.0e-6));
         }
     }
 

@@ -472,6 +472,43 @@ TEST_CASE ("a version-1 state loads with its values mapped", "[processor][state]
     CHECK (proc.currentParameters().get (ParamId::damping) == Approx (snaresim::spec (ParamId::damping).defaultValue));
 }
 
+TEST_CASE ("a state older than version 4 keeps its air: no outside air where it held none, the near field with it", "[processor][state]")
+{
+    auto load = [] (int version, std::initializer_list<std::pair<const char*, const char*>> params)
+    {
+        auto proc = std::make_unique<SnareSimAudioProcessor>();
+        juce::XmlElement xml ("SnareSimState");
+        xml.setAttribute ("stateVersion", version);
+        for (const auto& [id, value] : params)
+        {
+            auto* p = xml.createNewChildElement ("PARAM");
+            p->setAttribute ("id", id);
+            p->setAttribute ("value", value);
+        }
+        juce::MemoryBlock state;
+        juce::AudioProcessor::copyXmlToBinary (xml, state);
+        proc->setStateInformation (state.getData(), (int) state.getSize());
+        return proc->currentParameters();
+    };
+    // Versions 0 to 2 had no outside air key: their drum had none.
+    const auto v2 = load (2, { { "damping", "40" } });
+    CHECK (v2.get (ParamId::outsideAir) == 0.0);
+    CHECK (v2.get (ParamId::damping) == Approx (40.0));
+    // A version-3 state with the outside air on had its near field too; off, the near field is inert.
+    const auto v3 = load (3, { { "outside_air", "1" } });
+    CHECK (v3.get (ParamId::outsideAir) == 1.0);
+    CHECK (v3.get (ParamId::nearField) == 1.0);
+    CHECK (load (3, { { "outside_air", "0" } }).get (ParamId::outsideAir) == 0.0);
+    // What a state says wins over what is implied.
+    CHECK (load (3, { { "outside_air", "1" }, { "near_field", "0" } }).get (ParamId::nearField) == 0.0);
+    // Today's states imply nothing: a missing key takes today's default.
+    const auto v4 = load (snaresim::kStateVersion, {});
+    CHECK (v4.get (ParamId::outsideAir) == snaresim::spec (ParamId::outsideAir).defaultValue);
+    CHECK (v4.get (ParamId::nearField) == snaresim::spec (ParamId::nearField).defaultValue);
+    CHECK (snaresim::spec (ParamId::outsideAir).defaultValue == 1.0);
+    CHECK (snaresim::spec (ParamId::nearField).defaultValue == 0.0);
+}
+
 TEST_CASE ("garbage states never crash", "[processor][state]")
 {
     SnareSimAudioProcessor proc;

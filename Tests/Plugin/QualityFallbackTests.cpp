@@ -125,7 +125,7 @@ TEST_CASE ("Quality's fallback: a machine that keeps up plays the chosen Quality
         }
         CHECK (proc.qualityVerdict().state == State::keepsUp);
         CHECK (proc.currentParameters().get (ParamId::bandwidth) == Approx (kChosen).epsilon (1e-6));
-        CHECK (proc.getDrum()->config().batter.gridCoarseness == 2.0);
+        CHECK (proc.getDrum()->config().batter.gridCoarseness == snaresim::gridCoarsenessFor (kChosen));
         CHECK (proc.qualityNotice() == "");
         CHECK (proc.qualityMeasurements() == 1);
     }

@@ -90,8 +90,9 @@ TEST_CASE("bench: --json reports the block timings with sane values", "[renderer
     CHECK(number(json, "realtime_factor_slowest_run") <= number(json, "realtime_factor"));
 
     // The model's size: the default drum's at its default Quality, 48 kHz. Each head's spacing is
-    // twice the bound of eq. (39) for the largest tension and sigma1 the controls allow, widened
-    // for the cavity's reserve (Membrane::gridSpacing); every interior wire node is a point.
+    // the Quality's coarseness times the bound of eq. (39) for the largest tension and sigma1 the
+    // controls allow, widened for the air's reserve (Membrane::gridSpacing); every interior wire
+    // node is a point.
     snaresim::ParameterSet params;
     params.set(snaresim::ParamId::bandwidth, 7839.5127);
     const auto config = snaresim::makeDrumConfig(params, 48000.0);
@@ -103,7 +104,7 @@ TEST_CASE("bench: --json reports the block timings with sane values", "[renderer
         const double reserve = config.kineticReserve(ofBatter);
         const double bound = std::sqrt((2.0 * k * k * head->gridTension_N_per_m / head->density_kg_per_m2
                                         + 8.0 * head->gridSigma1_m2_per_s * k) / (1.0 - reserve));
-        CHECK(snaresim::Membrane::gridSpacing(*head, k, reserve) == Approx(2.0 * bound).epsilon(1e-12));
+        CHECK(snaresim::Membrane::gridSpacing(*head, k, reserve) == Approx(snaresim::gridCoarsenessFor(7839.5127) * bound).epsilon(1e-12));
     }
     CHECK(number(json, "batter_grid_spacing_m") == Approx(drum.batter().grid().spacing()).epsilon(1e-12));
     CHECK(number(json, "carry_grid_spacing_m") == Approx(drum.carry().grid().spacing()).epsilon(1e-12));

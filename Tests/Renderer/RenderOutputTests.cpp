@@ -247,12 +247,13 @@ TEST_CASE("lossless: --lossless --json reports an energy balance drift below 1e-
     CHECK(number(json, "peak") > 0.0);
 }
 
-TEST_CASE("lossless: the default single-precision heads hold the energy balance to float round-off", "[renderer]")
+TEST_CASE("lossless: single-precision heads hold the energy balance to float round-off", "[renderer]")
 {
     // 2^-24 per step, a random walk over the 13 230 steps: 2^-24 sqrt(13230) = 6.9e-6.
     TempDir dir;
     const auto run = runRenderer({ "-o", (dir.out() / "lossless.wav").string(), "--hit", "0:127", "--hit", "0.05:100",
-                                   "--seconds", "0.3", "--sample-rate", "44100", "--lossless", "--json" },
+                                   "--seconds", "0.3", "--sample-rate", "44100", "--lossless", "--json", "--set",
+                                   "head_precision=single" },
                                  dir.root() / "capture");
     INFO("stdout: " << run.out << "\nstderr: " << run.err);
     REQUIRE(run.exitCode == 0);
@@ -341,9 +342,9 @@ TEST_CASE("energy csv: --energy-csv writes the header and one row per sample", "
 
     const auto rows = lines(readText(csv));
     REQUIRE(rows.size() == (std::size_t) length + 1);
-    // The ledger's terms (the drum's five), their total, and the balance terms.
+    // The ledger's terms (the default drum's six: the outside air's too), their total, and the balance terms.
     CHECK(rows.front()
-          == "time_s,batter_J,carry_J,mallets_J,snares_J,cavity_J,total_J,dissipated_J,injected_J,balance_J");
+          == "time_s,batter_J,carry_J,mallets_J,snares_J,cavity_J,outside_J,total_J,dissipated_J,injected_J,balance_J");
     const auto columns = energyColumns(rows.front());
 
     double maxTotal = 0.0, firstBalance = 0.0, maxDeviation = 0.0;
