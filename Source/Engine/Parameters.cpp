@@ -100,7 +100,7 @@ constexpr std::array<ParameterSpec, kNumParameters> kSpecs {{
       "In real time, where this machine is measured not to keep up with the drum at the chosen Quality in the host's blocks, a lower bandwidth that keeps up plays and the editor says so; off: the chosen Quality always plays. Read by the plug-in only: bounces and the renderer play the chosen Quality",
       B, "off|on", "model" },
     { P::nearField, "near_field", "Near field", "", 0.0, 1.0, 0.0, S::linear, N::newModel,
-      "With the outside air: the air sloshing beside the heads weighs on their higher modes and lowers them 7-11 %, as the air box does; the drum then costs about 1.5 times as much (BENCHMARKS.md), so it is off by default; the air box has its own",
+      "With the outside air: the air sloshing beside the heads weighs on their higher modes and lowers them 7-11 %, as the air box does; the drum then costs about 1.6 times as much (BENCHMARKS.md), so it is off by default; the air box has its own",
       B, "off|on", "heads" },
 }};
 
