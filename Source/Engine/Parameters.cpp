@@ -162,11 +162,15 @@ constexpr std::array<ParameterMigration, 4> kMigrations {{
     { 3, "grid_coarseness", P::bandwidth, &qualityBandwidth_Hz },
 }};
 
-// States of versions 0 to 3 without the outside air's key had no outside air (it was off by
-// default); those with it had its near field, which became a parameter of its own in version 4.
-constexpr std::array<ImpliedParameter, 2> kImplied {{
+// Versions 0 to 3: their defaults, where a state does not hold the key (the outside air off, the
+// batter in single precision, the losses of then); with the outside air they had its near field,
+// which became a parameter of its own in version 4.
+constexpr std::array<ImpliedParameter, 5> kImplied {{
     { 4, P::outsideAir, 0.0 },
     { 4, P::nearField, 1.0 },
+    { 4, P::headPrecision, 1.0 },
+    { 4, P::damping, 75.0 },
+    { 4, P::highDamping, 2.1e-4 },
 }};
 
 constexpr double kLongestT60_s = 4.0, kShortestT60_s = 0.15;
