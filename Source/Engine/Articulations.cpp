@@ -23,6 +23,8 @@ constexpr Articulation kMainStrike { -1, "Main strike", A::strike, -1.0, 0.4, 1.
 
 std::span<const Articulation> articulations() { return kMap; }
 
+const Articulation& mainStrike() { return kMainStrike; }
+
 const Articulation& articulationForNote(int note)
 {
     for (const auto& a : kMap)

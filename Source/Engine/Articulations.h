@@ -31,4 +31,8 @@ std::span<const Articulation> articulations();
 // The articulation of a note: its entry in the map, or the main strike for any other note.
 const Articulation& articulationForNote(int midiNote);
 
+// The main strike: the strike_position control's radius, off the snares' axis (a stick never
+// lands on the drum's mirror line; there the drum's antisymmetric modes would stay silent).
+const Articulation& mainStrike();
+
 } // namespace snaresim

@@ -138,7 +138,11 @@ void Drum::strike(double speed, double xFrac, double yFrac)
     ledger.change(malletsTerm, after - before);
 }
 
-void Drum::strikeAtDefaultPoint(double speed) { strike(speed, cfg.strikeRadius_frac, 0.0); }
+void Drum::strikeAtDefaultPoint(double speed)
+{
+    const Articulation& a = mainStrike();
+    strike(a.speedScale * speed, cfg.strikeRadius_frac * std::cos(a.angle_rad), cfg.strikeRadius_frac * std::sin(a.angle_rad));
+}
 
 void Drum::playNote(int note, int velocity)
 {

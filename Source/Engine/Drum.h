@@ -83,6 +83,8 @@ public:
     // Start a strike with the next free mallet (round robin): speed in m/s (> 0, downward),
     // position as fractions of the radius. Real-time safe.
     void strike(double speed_m_per_s, double x_frac, double y_frac);
+    // A strike where the main strike lands (mainStrike(), Articulations.h): the strike_position
+    // control's radius, at its angle from the snares.
     void strikeAtDefaultPoint(double speed_m_per_s);
 
     // Play a MIDI note with its articulation (Articulations.h): velocity 1..127 through the

@@ -27,15 +27,15 @@ constexpr auto K = ParamKind::choice;
 constexpr std::array<ParameterSpec, kNumParameters> kSpecs {{
     { P::batterTension, "batter_tension", "Membrane tension", "N/m", 1000.0, 6000.0, 3050.0, S::linear, N::coefficients,
       "Tension of the batter (top) head; 3050 N/m puts its (0,1) mode near 200 Hz", C, "", "main" },
-    { P::snareTension, "snare_tension", "Snare tension", "N", 10.0, 100.0, 20.0, S::linear, N::coefficients,
+    { P::snareTension, "snare_tension", "Snare tension", "N", 10.0, 100.0, 10.0, S::linear, N::coefficients,
       "Tension of each snare wire", C, "", "main" },
-    { P::damping, "damping", "Damping", "%", 0.0, 100.0, 44.0, S::linear, N::coefficients,
+    { P::damping, "damping", "Damping", "%", 0.0, 100.0, 19.0, S::linear, N::coefficients,
       "Muffling of both heads: the lowest modes ring for 4 s at 0 % down to 0.15 s at 100 %", C, "", "main" },
     { P::carryTension, "carry_tension", "Carry tension", "N/m", 800.0, 5000.0, 2060.0, S::linear, N::coefficients,
       "Tension of the carry (snare-side) head; 2060 N/m puts its (0,1) mode near 300 Hz", C, "", "heads" },
     { P::carryFollows, "carry_follows", "Carry follows batter", "", 0.0, 1.0, 0.0, S::linear, N::coefficients,
       "Carry tension follows the membrane tension (keeping the default ratio) instead of its own control", B, "off|on", "heads" },
-    { P::highDamping, "high_damping", "High damping", "m^2/s", 0.0, 3.0e-3, 4.0e-4, S::linear, N::coefficients,
+    { P::highDamping, "high_damping", "High damping", "m^2/s", 0.0, 3.0e-3, 1.15e-3, S::linear, N::coefficients,
       "Frequency-dependent loss sigma1 of both heads: higher dulls the overtones", C, "", "heads" },
     { P::shellDepth, "shell_depth", "Shell depth", "m", 0.05, 0.25, 0.14, S::linear, N::coefficients,
       "Depth of the shell: the enclosed air's volume and so its stiffness", C, "", "heads" },
@@ -80,8 +80,8 @@ constexpr std::array<ParameterSpec, kNumParameters> kSpecs {{
     { P::offlineAirBox, "offline_airbox", "Air box when bouncing", "", 0.0, 1.0, 1.0, S::linear, N::coefficients,
       "When the host renders offline (a bounce), the drum plays in the air box whatever the air model says; off: bounces play the air model. Read by the plug-in only: the renderer plays the air model",
       B, "off|on", "model" },
-    { P::headPrecision, "head_precision", "Head arithmetic", "", 0.0, 1.0, 0.0, S::linear, N::newModel,
-      "The batter's state and update (eq. 22) in double precision, or in single: the batter a quarter to a third cheaper, the energy identity held to float round-off (BENCHMARKS.md), but with the outside air the snares' tail about 5 % darker, so double by default; the carry head, which the snares strike, and the air box's heads always run in double",
+    { P::headPrecision, "head_precision", "Head arithmetic", "", 0.0, 1.0, 1.0, S::linear, N::newModel,
+      "The batter's state and update (eq. 22) in double precision, or in single: the batter a quarter to a third cheaper, the energy identity held to float round-off, the snares' sound the same in the mean (BENCHMARKS.md); the carry head, which the snares strike, and the air box's heads always run in double",
       K, "double|single", "model" },
     { P::outsideAir, "outside_air", "Outside air", "", 0.0, 1.0, 1.0, S::linear, N::newModel,
       "The air around the heads with the cavity: its mass lowers the heads' lowest modes and it carries their sound away (radiation channels calibrated against the air box); the air box has its own",
@@ -164,13 +164,18 @@ constexpr std::array<ParameterMigration, 4> kMigrations {{
 
 // Versions 0 to 3: their defaults, where a state does not hold the key (the outside air off, the
 // batter in single precision, the losses of then); with the outside air they had its near field,
-// which became a parameter of its own in version 4.
-constexpr std::array<ImpliedParameter, 5> kImplied {{
+// which became a parameter of its own in version 4. Version 4: the batter in double, its losses and
+// snare tension. The first entry for a key that applies to a state wins.
+constexpr std::array<ImpliedParameter, 9> kImplied {{
     { 4, P::outsideAir, 0.0 },
     { 4, P::nearField, 1.0 },
     { 4, P::headPrecision, 1.0 },
     { 4, P::damping, 75.0 },
     { 4, P::highDamping, 2.1e-4 },
+    { 5, P::headPrecision, 0.0 },
+    { 5, P::damping, 44.0 },
+    { 5, P::highDamping, 4e-4 },
+    { 5, P::snareTension, 20.0 },
 }};
 
 constexpr double kLongestT60_s = 4.0, kShortestT60_s = 0.15;

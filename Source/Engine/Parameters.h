@@ -152,7 +152,7 @@ private:
 
 // Saved states: the version written now, and how older versions' parameters map onto today's
 // (a renamed key, its value converted). A key that is neither today's nor migrated is ignored.
-inline constexpr int kStateVersion = 4;
+inline constexpr int kStateVersion = 5;
 struct ParameterMigration
 {
     int beforeVersion;            // applies to states older than this

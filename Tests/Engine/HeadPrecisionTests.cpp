@@ -21,10 +21,10 @@ using namespace snaresim;
 namespace
 {
 // The product's drum at a Quality (bandwidth, Hz): its finest, qualityBandwidth_Hz(1.0), or its
-// default; without the outside air: with it the single-precision batter darkens the snares' tail
-// (the mean tail centroid 5.5 % lower at the default Quality, band shares a point apart), which
-// is why the product runs the batter in double by default (docs/MODEL.md, "Heads in single
-// precision").
+// default; without the outside air, struck on the snares' axis: the heads' arithmetic alone. (With
+// the outside air, on the axis, float round-off breaks the drum's mirror symmetry where the
+// double drum keeps it, and the snares' tail darkens as for any strike off the axis:
+// docs/MODEL.md, "Heads in single precision".)
 const double kFinest_Hz = qualityBandwidth_Hz(1.0);
 const double kDefault_Hz = spec(ParamId::bandwidth).defaultValue;
 

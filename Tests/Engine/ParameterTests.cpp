@@ -46,9 +46,11 @@ TEST_CASE("the defaults give the 14 x 5.5 inch drum of docs/MODEL.md", "[paramet
     CHECK(c.batter.tension_N_per_m == 3050.0);
     CHECK(c.batter.density_kg_per_m2 == Approx(0.353));
     CHECK(c.mallet.mass_kg == 0.028);
-    CHECK(c.batter.sigma0_per_s == Approx(3.0 * std::log(10.0) / (4.0 * std::pow(0.15 / 4.0, 0.44)))); // damping 44 %
+    CHECK(c.batter.sigma0_per_s == Approx(3.0 * std::log(10.0) / (4.0 * std::pow(0.15 / 4.0, 0.19)))); // damping 19 %
     CHECK(c.mallet.stiffness == 4.0e9);
-    CHECK(c.batter.sigma1_m2_per_s == Approx(4.0e-4));
+    CHECK(c.batter.sigma1_m2_per_s == Approx(1.15e-3));
+    CHECK(c.snares.tension_N == 10.0);
+    CHECK(c.batter.precision == HeadPrecision::single_precision);
     // The grid is designed for the largest tension the control allows.
     CHECK(c.batter.gridTension_N_per_m == spec(ParamId::batterTension).maxValue);
     // Real time by default: the quadratised snare solve, the grids of the default bandwidth, the
@@ -236,7 +238,7 @@ TEST_CASE("a change the schema says rebuilds the model changes the grids or the 
 
 TEST_CASE("old states' keys migrate as the schema says", "[parameters]")
 {
-    CHECK(kStateVersion == 4);
+    CHECK(kStateVersion == 5);
     const auto decay = migrateParameter(1, "batter_decay", 4.0);
     REQUIRE(decay.has_value());
     CHECK(decay->first == ParamId::damping);

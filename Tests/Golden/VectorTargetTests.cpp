@@ -63,7 +63,7 @@ Render render(const TempDir& dir, std::vector<std::string> args, const std::vect
     return { data.channelSamples, json["vector_target"].toString().toStdString() };
 }
 
-// The mean features of strikes at velocities 100, 101, ... (one render each, 0.5 s): the
+// The mean features of strikes at velocities 100, 101, ... (one render each, 1 s): the
 // tail centroid, the five band shares of the first 300 ms and the 20 / 40 dB falls.
 struct MeanFeatures
 {
@@ -78,7 +78,7 @@ MeanFeatures meanFeatures(const TempDir& dir, const std::vector<std::string>& en
     MeanFeatures m;
     for (int i = 0; i < draws; ++i)
     {
-        std::vector<std::string> args { "--hit", "0:" + std::to_string(100 + i), "--seconds", "0.5" };
+        std::vector<std::string> args { "--hit", "0:" + std::to_string(100 + i), "--seconds", "1" };
         args.insert(args.end(), extra.begin(), extra.end());
         const auto r = render(dir, args, environment);
         const std::vector<double> x(r.channels[0].begin(), r.channels[0].end());

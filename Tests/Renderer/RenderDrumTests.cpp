@@ -254,11 +254,12 @@ TEST_CASE("plots: --energy-plot and --spectrogram write PNG images", "[renderer]
     {
         const auto csv = dir.out() / "energy.csv";
         // The heads in double precision: the balance is then a curve at double round-off, not
-        // float round-off's random walk. Light damping (25 %): the total's plateau then ends on
-        // a slope the pixels resolve.
+        // float round-off's random walk. Light damping (25 %, high damping 4e-4 m^2/s, 20 N
+        // wires): the total's plateau then ends on a slope the pixels resolve.
         const auto run = runRenderer(with({ "-o", wav.string(), "--mic", "all", "--energy-plot", energy.string(),
                                             "--spectrogram", spectrum.string(), "--energy-csv", csv.string(), "--json",
-                                            "--set", "head_precision=double", "--set", "damping=25" },
+                                            "--set", "head_precision=double", "--set", "damping=25", "--set",
+                                            "high_damping=4e-4", "--set", "snare_tension=20" },
                                           kQuick),
                                      dir.root() / "capture");
         INFO("stderr: " << run.err);
