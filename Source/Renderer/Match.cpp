@@ -13,6 +13,7 @@
 #include "DrumConfig.h"
 #include "ParameterText.h"
 #include "PresetFile.h"
+#include "Presets.h"
 
 #include <juce_core/juce_core.h>
 
@@ -290,6 +291,8 @@ struct MatchResult
     StrikeFeatures features;        // the chosen strike's
     int renders = 0;
     double wallSeconds = 0.0;
+    std::string startPreset;        // the factory preset the search started from, if it chose one
+    double startPreset_dB = 0.0;    // and its strike's whole-strike distance
 };
 
 std::string optionalText(const std::optional<double>& v, const char* format)
@@ -335,6 +338,8 @@ std::string formatJson(const RenderJob& job, const std::vector<MatchCoordinate>&
     for (std::size_t i = 0; i < r.terms.z.size(); ++i)
         terms->setProperty(juce::String(std::string(MatchDistance::kTermNames[i])), r.terms.z[i]);
     root->setProperty("terms", juce::var(terms));
+    root->setProperty("start_preset", r.startPreset.empty() ? juce::var() : juce::var(juce::String(r.startPreset)));
+    root->setProperty("start_preset_distance_db", r.startPreset.empty() ? juce::var() : juce::var(r.startPreset_dB));
     root->setProperty("renders", r.renders);
     root->setProperty("wall_seconds", r.wallSeconds);
     root->setProperty("sample_rate_hz", r.features.sampleRate_Hz);
@@ -351,6 +356,12 @@ std::string formatSummary(const RenderJob& job, const std::vector<MatchCoordinat
     std::snprintf(line, sizeof line, "snaresim-render: matched %s in %d renders (%.1f s): distance %.3f, whole-strike distance %.2f dB\n",
                   job.match->filename().c_str(), r.renders, r.wallSeconds, r.distance, r.strike_dB);
     s += line;
+    if (! r.startPreset.empty())
+    {
+        std::snprintf(line, sizeof line, "  started from the factory preset %s (whole-strike distance %.2f dB)\n", r.startPreset.c_str(),
+                      r.startPreset_dB);
+        s += line;
+    }
     std::snprintf(line, sizeof line, "  %-22s %16s %16s\n", "parameter", "start", "match");
     s += line;
     for (const auto& c : coordinates)
@@ -402,6 +413,53 @@ void checkMatchOptions(const RenderJob& job)
         throw UserError(std::string(option) + " cannot be used with --match (see --help)");
 }
 
+// The factory preset whose strike (kMatchFixedVelocity) lies nearest the recording by the
+// whole-strike distance, among those with the snares as `start` has them, with --model and --set
+// over it as over any preset; the strikes rendered on every core. Empty when none renders.
+struct PresetStart
+{
+    std::string name;
+    ParameterSet params;
+    double strike_dB = 0.0;
+    int renders = 0;
+};
+
+std::optional<PresetStart> nearestPresetStart(const RenderJob& job, const ParameterSet& start, double rate,
+                                              const StrikeSignature& recording)
+{
+    std::vector<PresetStart> presets;
+    for (const auto& preset : factoryPresets())
+    {
+        RenderJob withPreset = job;
+        withPreset.preset = std::string(preset.name);
+        auto params = makeParameters(withPreset);
+        if (params.get(ParamId::snaresEngaged) == start.get(ParamId::snaresEngaged))
+            presets.push_back({ std::string(preset.name), params, 0.0, 0 });
+    }
+    std::vector<Evaluation> results(presets.size());
+    std::atomic<std::size_t> next { 0 };
+    auto work = [&] {
+        for (std::size_t j; (j = next++) < presets.size();)
+            results[j] = evaluateCandidate(Candidate { presets[j].params, kMatchFixedVelocity }, rate, recording);
+    };
+    const auto threads = (std::size_t) std::clamp(std::thread::hardware_concurrency(), 1u, 8u);
+    std::vector<std::future<void>> workers;
+    for (std::size_t t = 0; t < std::min(threads, presets.size()); ++t)
+        workers.push_back(std::async(std::launch::async, work));
+    for (auto& worker : workers)
+        worker.get(); // an interruption comes out here
+    std::optional<PresetStart> nearest;
+    for (std::size_t j = 0; j < presets.size(); ++j)
+        if (results[j].terms && (! nearest || results[j].terms->strike_dB < nearest->strike_dB))
+        {
+            nearest = presets[j];
+            nearest->strike_dB = results[j].terms->strike_dB;
+        }
+    if (nearest)
+        nearest->renders = (int) presets.size();
+    return nearest;
+}
+
 } // namespace
 
 std::string defaultMatchParams()
@@ -416,8 +474,9 @@ int runMatch(const RenderJob& job)
     checkMatchOptions(job);
     const auto begin = Clock::now();
 
-    // The start (defaults, --preset, --model, --set) and what is searched.
-    const auto start = makeParameters(job);
+    // The start (defaults, --preset, --model, --set; the nearest factory preset below) and what is
+    // searched.
+    auto start = makeParameters(job);
     if (start.get(ParamId::airModel) == 2.0)
         throw UserError("--match renders the real-time model: the air box (air_model=airbox) is far too slow for a search");
     std::vector<MatchCoordinate> coordinates;
@@ -467,12 +526,21 @@ int runMatch(const RenderJob& job)
 
     const int budget = job.matchBudget.value_or(kDefaultMatchBudget);
     MatchProgress progress(! job.json, budget);
+
+    // A recording's drum lies nearer one of the factory presets than the defaults: without
+    // --preset and --match-params the search starts from the nearest (what it does not search,
+    // such as a felt mallet's exponent, comes with it).
+    std::optional<PresetStart> presetStart;
+    if (! job.preset && ! job.matchParams && budget >= kPresetStartBudget)
+        if ((presetStart = nearestPresetStart(job, start, rate, recording)))
+            start = presetStart->params;
+    const int startRenders = presetStart ? presetStart->renders : 0;
     MatchObjective objective(recording, rate, start, coordinates, progress);
 
     // The search, then the finalists each struck twice more (velocity -4 and +4): the chaotic
     // snares make one strike's distance noisy, the mean of three is the one that decides.
     SearchSettings settings;
-    settings.budget = budget - 2 * kMatchFinalists;
+    settings.budget = budget - 2 * kMatchFinalists - startRenders;
     settings.seed = (std::uint64_t) job.matchSeed.value_or(kDefaultMatchSeed);
     const auto ranked = searchMinimum(objective.startPoint(), objective, settings, kMatchFinalists);
 
@@ -500,7 +568,12 @@ int runMatch(const RenderJob& job)
     result.strike_dB = chosen.terms->strike_dB;
     result.terms = *chosen.terms;
     result.features = chosen.signature->features;
-    result.renders = objective.cost();
+    result.renders = objective.cost() + startRenders;
+    if (presetStart)
+    {
+        result.startPreset = presetStart->name;
+        result.startPreset_dB = presetStart->strike_dB;
+    }
 
     // The preset file: a comment that says what it is, then the parameters.
     char comment[512];

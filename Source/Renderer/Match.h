@@ -20,6 +20,9 @@ inline constexpr double kMatchSeconds = 0.6;
 inline constexpr int kMatchFixedVelocity = 100; // when velocity is not searched
 inline constexpr int kMatchFinalists = 3;       // re-rendered at velocity -4 and +4 at the end
 inline constexpr int kDefaultMatchSeed = 20240611; // --match-seed
+// Without --preset and --match-params, and with at least this budget, the search starts from the
+// factory preset whose strike lies nearest the recording (its renders count in the budget).
+inline constexpr int kPresetStartBudget = 60;
 
 // The default --match-params (velocity: the strike's MIDI velocity, searched with them); with
 // the snares off at the start, snare_tension and snare_count are left out.

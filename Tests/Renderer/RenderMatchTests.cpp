@@ -5,6 +5,7 @@
 
 #include "RendererTestSupport.h"
 
+#include "Match.h"
 #include "Parameters.h"
 #include "PresetFile.h"
 
@@ -287,6 +288,40 @@ TEST_CASE("match: the default parameters searched, without the snare ones when t
         CHECK(matched.contains("velocity"));
         CHECK((int) json["renders"] <= 12);
         CHECK(parameterOf(json, "snares_engaged") == (snaresOff ? 0.0 : 1.0));
+    }
+}
+
+TEST_CASE("match: without --preset and --match-params the search starts from the nearest factory preset", "[renderer][match]")
+{
+    // A strike of Piccolo as the recording: of the factory presets, Piccolo's own strike lies at 0 dB.
+    TempDir dir;
+    const auto recording = (dir.in() / "piccolo.wav").string();
+    REQUIRE(runRenderer({ "-o", recording, "--preset", "Piccolo", "--hit", "0:100", "--seconds", "1" }, dir.root() / "capture").exitCode
+            == 0);
+    const auto preset = (dir.out() / "m.snarepreset").string();
+    const auto run = runRenderer({ "--match", recording, "-o", preset, "--match-budget", std::to_string(snaresim::render::kPresetStartBudget),
+                                   "--json" },
+                                 dir.root() / "capture");
+    INFO("stderr: " << run.err);
+    REQUIRE(run.exitCode == 0);
+    const auto json = parseJson(run.out);
+    CHECK(json["start_preset"].toString() == "Piccolo");
+    CHECK((double) json["start_preset_distance_db"] < 0.1);
+    CHECK((double) json["strike_distance_db"] < 0.1); // the search keeps the start when nothing beats it
+    CHECK((int) json["renders"] <= snaresim::render::kPresetStartBudget);
+    CHECK(parameterOf(json, "shell_depth") == Approx(0.076)); // not searched: Piccolo's, not the default 0.14 m
+
+    // With --match-params, or a smaller budget, the search starts from the defaults.
+    for (const auto& extra : std::vector<std::vector<std::string>> { { "--match-params", "damping", "--match-budget", "60" },
+                                                                     { "--match-budget", "59" } })
+    {
+        std::vector<std::string> args { "--match", recording, "-o", preset, "--json" };
+        args.insert(args.end(), extra.begin(), extra.end());
+        const auto other = runRenderer(args, dir.root() / "capture");
+        REQUIRE(other.exitCode == 0);
+        const auto j = parseJson(other.out);
+        CHECK(j["start_preset"].isVoid());
+        CHECK(parameterOf(j, "shell_depth") == Approx(0.14));
     }
 }
 
