@@ -687,7 +687,9 @@ Usage:
 
 Strikes:
   --hit TIME:VELOCITY   strike at TIME seconds (>= 0) with MIDI velocity 1..127, at the
-                        default strike point; repeatable (e.g. --hit 0:100 --hit 0.5:60)
+                        default strike point (where note 38 strikes: strike_position
+                        from the centre, 0.4 rad from the snares' direction);
+                        repeatable (e.g. --hit 0:100 --hit 0.5:60)
   --midi FILE           strike on every note-on of a Standard MIDI file (all tracks, tempo
                         map honoured, any note number; velocity-0 note-ons are note-offs)
 
