@@ -138,11 +138,13 @@ void Drum::strike(double speed, double xFrac, double yFrac)
     ledger.change(malletsTerm, after - before);
 }
 
-void Drum::strikeAtDefaultPoint(double speed)
+void Drum::strikeAs(const Articulation& a, double speed)
 {
-    const Articulation& a = mainStrike();
-    strike(a.speedScale * speed, cfg.strikeRadius_frac * std::cos(a.angle_rad), cfg.strikeRadius_frac * std::sin(a.angle_rad));
+    const double r = a.radius_frac < 0.0 ? cfg.strikeRadius_frac : a.radius_frac;
+    strike(a.speedScale * speed, r * std::cos(a.angle_rad), r * std::sin(a.angle_rad));
 }
+
+void Drum::strikeAtDefaultPoint(double speed) { strikeAs(mainStrike(), speed); }
 
 void Drum::playNote(int note, int velocity)
 {
@@ -153,9 +155,7 @@ void Drum::playNote(int note, int velocity)
         case ArticulationAction::snaresOn: setSnaresEngaged(true); return;
         case ArticulationAction::strike: break;
     }
-    const double r = a.radius_frac < 0.0 ? cfg.strikeRadius_frac : a.radius_frac;
-    strike(a.speedScale * strikeSpeedFromVelocity(velocity, cfg.strikeSpeedMax_m_per_s), r * std::cos(a.angle_rad),
-           r * std::sin(a.angle_rad));
+    strikeAs(a, strikeSpeedFromVelocity(velocity, cfg.strikeSpeedMax_m_per_s));
 }
 
 void Drum::applyLive(const DrumConfig& next) noexcept

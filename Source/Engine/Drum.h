@@ -156,6 +156,9 @@ public:
     int numMallets() const { return (int) mallets.size(); }
 
 private:
+    // A strike as an articulation places it (its radius, or the strike_position control's; its
+    // angle and speed scale), at this speed before the scale.
+    void strikeAs(const Articulation& a, double speed_m_per_s);
     auto energyTerms() const; // the ledger's terms and their owners (Drum.cpp)
     void updateEnergy();
     double simulate();             // one step of the simulation

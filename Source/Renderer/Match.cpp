@@ -131,6 +131,27 @@ Evaluation evaluateCandidate(const Candidate& candidate, double rate, const Stri
     return e;
 }
 
+// The threads that render candidates: one per core, up to 8.
+std::size_t renderThreads() { return (std::size_t) std::clamp(std::thread::hardware_concurrency(), 1u, 8u); }
+
+// The candidates' evaluations, rendered on renderThreads(), each thread taking the next candidate
+// when it is free (a drum with 40 wires takes longer than one with 5).
+std::vector<Evaluation> evaluateAll(const std::vector<Candidate>& candidates, double rate, const StrikeSignature& recording)
+{
+    std::vector<Evaluation> results(candidates.size());
+    std::atomic<std::size_t> next { 0 };
+    auto work = [&] {
+        for (std::size_t j; (j = next++) < candidates.size();)
+            results[j] = evaluateCandidate(candidates[j], rate, recording);
+    };
+    std::vector<std::future<void>> workers;
+    for (std::size_t t = 0; t < std::min(renderThreads(), candidates.size()); ++t)
+        workers.push_back(std::async(std::launch::async, work));
+    for (auto& worker : workers)
+        worker.get(); // an interruption comes out here
+    return results;
+}
+
 // ---- progress ---------------------------------------------------------------------------------
 
 // On a terminal one line rewritten in place; otherwise a line each time the best improves; with
@@ -188,7 +209,6 @@ public:
                    MatchProgress& progress)
         : recording(recording), rate(rate), start(start), coordinates(std::move(coordinates)), progress(progress)
     {
-        threads = (int) std::clamp(std::thread::hardware_concurrency(), 1u, 8u);
     }
 
     Candidate candidateAt(const UnitPoint& point) const
@@ -232,24 +252,16 @@ public:
             if (! cache.count(keys.back()) && std::none_of(todo.begin(), todo.end(), [&](std::size_t j) { return keys[j] == keys.back(); }))
                 todo.push_back(i);
         }
-        // In chunks of a few per thread, each thread taking the next candidate when it is free
-        // (a drum with 40 wires takes longer than one with 5); the progress after each chunk.
-        const std::size_t chunk = 4 * (std::size_t) threads;
+        // In chunks of a few per thread (evaluateAll); the progress after each chunk.
+        const std::size_t chunk = 4 * renderThreads();
         for (std::size_t first = 0; first < todo.size(); first += chunk)
         {
             throwIfInterrupted();
             const std::size_t last = std::min(todo.size(), first + chunk);
-            std::vector<Evaluation> results(last - first);
-            std::atomic<std::size_t> next { first };
-            auto work = [&] {
-                for (std::size_t j; (j = next++) < last;)
-                    results[j - first] = evaluateCandidate(candidates[todo[j]], rate, recording);
-            };
-            std::vector<std::future<void>> workers;
-            for (std::size_t t = 0; t < std::min<std::size_t>((std::size_t) threads, last - first); ++t)
-                workers.push_back(std::async(std::launch::async, work));
-            for (auto& worker : workers)
-                worker.get(); // an interruption comes out here
+            std::vector<Candidate> batch;
+            for (std::size_t j = first; j < last; ++j)
+                batch.push_back(candidates[todo[j]]);
+            auto results = evaluateAll(batch, rate, recording);
             for (std::size_t j = first; j < last; ++j)
             {
                 ++renders;
@@ -274,7 +286,6 @@ private:
     ParameterSet start;
     std::vector<MatchCoordinate> coordinates;
     MatchProgress& progress;
-    int threads = 1;
     int renders = 0;
     double best = 1e300;
     std::map<std::vector<double>, Evaluation> cache;
@@ -415,7 +426,7 @@ void checkMatchOptions(const RenderJob& job)
 
 // The factory preset whose strike (kMatchFixedVelocity) lies nearest the recording by the
 // whole-strike distance, among those with the snares as `start` has them, with --model and --set
-// over it as over any preset; the strikes rendered on every core. Empty when none renders.
+// over it as over any preset. Empty when none renders.
 struct PresetStart
 {
     std::string name;
@@ -436,18 +447,10 @@ std::optional<PresetStart> nearestPresetStart(const RenderJob& job, const Parame
         if (params.get(ParamId::snaresEngaged) == start.get(ParamId::snaresEngaged))
             presets.push_back({ std::string(preset.name), params, 0.0, 0 });
     }
-    std::vector<Evaluation> results(presets.size());
-    std::atomic<std::size_t> next { 0 };
-    auto work = [&] {
-        for (std::size_t j; (j = next++) < presets.size();)
-            results[j] = evaluateCandidate(Candidate { presets[j].params, kMatchFixedVelocity }, rate, recording);
-    };
-    const auto threads = (std::size_t) std::clamp(std::thread::hardware_concurrency(), 1u, 8u);
-    std::vector<std::future<void>> workers;
-    for (std::size_t t = 0; t < std::min(threads, presets.size()); ++t)
-        workers.push_back(std::async(std::launch::async, work));
-    for (auto& worker : workers)
-        worker.get(); // an interruption comes out here
+    std::vector<Candidate> strikes;
+    for (const auto& preset : presets)
+        strikes.push_back({ preset.params, kMatchFixedVelocity });
+    const auto results = evaluateAll(strikes, rate, recording);
     std::optional<PresetStart> nearest;
     for (std::size_t j = 0; j < presets.size(); ++j)
         if (results[j].terms && (! nearest || results[j].terms->strike_dB < nearest->strike_dB))
