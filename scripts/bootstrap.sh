@@ -3,7 +3,8 @@
 #
 #   bash scripts/bootstrap.sh demo      # build, then render out/demo.wav (prints its absolute path)
 #   bash scripts/bootstrap.sh test      # build everything, run the short benchmark (prints its JSON
-#                                       # line; never fails on time), then the whole test suite (ctest)
+#                                       # line; never fails on time), then the whole test suite (ctest,
+#                                       # a test per core at a time)
 #   bash scripts/bootstrap.sh sanitize  # a second build with clang, AddressSanitizer and UBSan in
 #                                       # build-asan/, then the suite there but the tests
 #                                       # labelled slow (the corner test does run)
@@ -135,7 +136,9 @@ case "$mode" in
         "$renderer" --bench --bench-short --json
 
         log "running the tests"
-        ctest --test-dir "$build_dir" --output-on-failure
+        # As many at a time as there are cores: every test works in its own folder; the hosts,
+        # the validators and jalv's JACK server run alone (RUN_SERIAL).
+        ctest --test-dir "$build_dir" --output-on-failure -j "$jobs"
         ;;
     sanitize)
         log "building everything with the sanitizers"

@@ -291,7 +291,7 @@ TEST_CASE("match: the default parameters searched, without the snare ones when t
     }
 }
 
-TEST_CASE("match: without --preset and --match-params the search starts from the nearest factory preset", "[renderer][match]")
+TEST_CASE("match: without --preset and --match-params the search starts from the nearest factory preset", "[renderer][match][slow]")
 {
     // A strike of Piccolo as the recording: of the factory presets, Piccolo's own strike lies at 0 dB.
     TempDir dir;
