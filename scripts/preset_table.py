@@ -9,7 +9,7 @@ Each factory preset (the renderer's --help lists them) is struck once at velocit
 (the cavity) and --mic mix, 48 kHz, --seconds long. scripts/snare_features.py's features of each
 render give one row: tail centroid, band shares of the first 300 ms, -20 / -40 dB times, lowest
 strong peak. Below them, the ranges (min-max over the files) of the recorded snare drums of
-Debian's hydrogen-drumkits, as scripts/airbox_figures.py finds them: ForzeeStereo Snare-0..4
+Debian's hydrogen-drumkits, as scripts/recordings.py lists them: ForzeeStereo Snare-0..4
 (snares on), SnareOff-0..4 (snares off), ColomboAcousticDrumkit's plain strokes (snares on).
 
 The goal, per row: the strike's whole-strike distance (docs/MATCHING.md, "The distance of two
@@ -55,7 +55,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import airbox_figures  # noqa: E402
+import recordings  # noqa: E402
 import snare_features  # noqa: E402
 
 VELOCITIES = [60, 100, 127]
@@ -115,7 +115,7 @@ def render_strike(render, wav, preset, velocity, seconds, snares_off, settings=(
 
 
 def distance_refs(refs=DISTANCE_REFS):
-    return ['%s:%s' % (os.path.join(airbox_figures.KITS, kit), pattern) for kit, pattern in refs]
+    return ['%s:%s' % (os.path.join(recordings.KITS, kit), pattern) for kit, pattern in refs]
 
 
 def nearest_recordings(render, files, refs):
@@ -136,7 +136,7 @@ def nearest_recordings(render, files, refs):
 def recorded_ranges():
     """Each recorded set's files and (min, max) of every column; None when a set has no files."""
     sets = {}
-    for name, files in airbox_figures.RECORDINGS:
+    for name, files in recordings.RECORDINGS:
         if name not in ON_SETS + OFF_SETS:
             continue
         if not files:
@@ -224,7 +224,7 @@ def main():
         sets, missing = recorded_ranges()
         if sets is None:
             print('preset_table.py: no recordings for %s in %s (apt-get install hydrogen-drumkits)'
-                  % (missing, airbox_figures.KITS), file=sys.stderr)
+                  % (missing, recordings.KITS), file=sys.stderr)
             return 77 if args.check else 2
         if args.work:
             os.makedirs(args.work, exist_ok=True)

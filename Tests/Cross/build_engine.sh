@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Builds the engine library (Source/Engine: Eigen and the standard library, no JUCE) with a
+# Builds the engine (Source/Physics, Model and Player: Eigen and the standard library, no JUCE) with a
 # cross compiler, links PlayStrike.cpp against it, and runs that under EMULATOR when one is
 # given (qemu-user): the engine builds and plays on another architecture.
 #
@@ -14,9 +14,9 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
 flags=(-std=c++20 -O2 -DNDEBUG -Wall -Wextra -fno-math-errno -fno-trapping-math -fopenmp-simd
-       -I"$src/Source/Engine" -I"$presets" -I/usr/include/eigen3)
+       -I"$src/Source/Physics" -I"$src/Source/Model" -I"$src/Source/Player" -I"$presets" -I/usr/include/eigen3)
 count=0
-for f in "$src"/Source/Engine/*.cpp "$presets"/BinaryData*.cpp; do
+for f in "$src"/Source/{Physics,Model,Player}/*.cpp "$presets"/BinaryData*.cpp; do
     "$cxx" "${flags[@]}" -c "$f" -o "$work/$(basename "$f" .cpp).o"
     count=$((count + 1))
 done

@@ -25,7 +25,7 @@ DrumConfig withNearField(DrumConfig c)
 TEST_CASE("near field: the shapes, every (m, n) up to the cutoff but the channels' (0,1) and (1,1)", "[nearfield]")
 {
     const DrumConfig cfg = withNearField(DrumConfig {});
-    const auto shapes = NearFieldAir::shapes(cfg);
+    const auto shapes = NearFieldAir::shapes(cfg.nearFieldSpec());
     const double top = cfg.outside.nearFieldUpTo_per_m * cfg.batter.radius_m;
     int onBatter = 0;
     for (size_t i = 0; i < shapes.size(); ++i)
@@ -43,9 +43,9 @@ TEST_CASE("near field: the shapes, every (m, n) up to the cutoff but the channel
     CHECK(onBatter == 2 + 2 * 2 + 2 * 2 + 2 * 2 + 2 + 2 + 2);
     CHECK(shapes.front().m == 2);
     CHECK(shapes.front().zero == Approx(5.13562).epsilon(1e-5));
-    CHECK(NearFieldAir::shapes(DrumConfig {}).empty()); // off with the outside air
-    CHECK(NearFieldAir::kineticReserve(cfg, true) == cfg.outside.nearFieldReserve);
-    CHECK(NearFieldAir::kineticReserve(DrumConfig {}, true) == 0.0);
+    CHECK(NearFieldAir::shapes(DrumConfig {}.nearFieldSpec()).empty()); // off with the outside air
+    CHECK(NearFieldAir::kineticReserve(cfg.nearFieldSpec(), true) == cfg.outside.nearFieldReserve);
+    CHECK(NearFieldAir::kineticReserve(DrumConfig {}.nearFieldSpec(), true) == 0.0);
 }
 
 TEST_CASE("near field: each channel puts rho_a (1 + coth kH) / k on its mode, its corner above the mode", "[nearfield]")
@@ -79,7 +79,7 @@ TEST_CASE("near field: the (0,n) and (1,n) shapes leave the channels' coordinate
     // norm (the continuum's are zero; the grid's rim leaves parts in 1e3).
     const double R = 0.1778, h = R / 200.0;
     const DrumConfig cfg = withNearField(DrumConfig {});
-    for (const NearFieldShape& s : NearFieldAir::shapes(cfg))
+    for (const NearFieldShape& s : NearFieldAir::shapes(cfg.nearFieldSpec()))
     {
         if (s.head != 0 || s.m > 1)
             continue;
