@@ -89,12 +89,12 @@ int main(int argc, char** argv)
         const AirSpeed a = measureAirSpeed(air, cores);
         std::printf("  the drum's air box %.2f m, h_a %.2f mm, %ld points: bare 7-point stencil %.3g updates/s (double; float %.3g); "
                     "air update %.3g updates/s on 1 thread (%.3f of the bare), %.3g on %d threads (%.3f)\n",
-                    cfg.air.size_m[0], 1e3 * a.spacing_m, a.points, a.bareRate(), a.bareFloatRate(), a.airRate(),
+                    cfg.airBox.size_m[0], 1e3 * a.spacing_m, a.points, a.bareRate(), a.bareFloatRate(), a.airRate(),
                     a.airRate() / a.bareRate(), a.airThreadsRate(), a.threads, a.airThreadsRate() / a.bareRate());
     }
     for (int threads : { 1, cores })
     {
-        box.air.threads = threads;
+        box.airBox.threads = threads;
         const Run struck = timeDrum(box, seconds, true);
         const double quiet = timeDrum(box, seconds, false).perAudioSecond;
         std::printf("  air box, %d thread%s: %.3f struck (contact trials per head and step: mean %.3f, most %d); %.3f unstruck (air, heads, embeddings)\n",

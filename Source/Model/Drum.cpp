@@ -66,28 +66,28 @@ auto Drum::energyTerms() const
                         EnergyTerm("carry", carryHead),                            // eq. (35)
                         EnergyTerm("mallets", mallets, malletCoupling),            // eq. (37)
                         EnergyTerm("snares", wires, snareCoupling).when(engaged),  // eq. (38)
-                        EnergyTerm("cavity", air),                                 // (K/2) dV^{n+1} dV^n
+                        EnergyTerm("cavity", cavityAir),                                 // (K/2) dV^{n+1} dV^n
                         EnergyTerm("cavity_modes", modes).listedIf(modes.active()), // CavityModes.h
                         EnergyTerm("outside", outside).listedIf(outside.active()), // OutsideAir.h
                         EnergyTerm("near_field", nearField).listedIf(nearField.active()), // NearFieldAir.h
-                        EnergyTerm("airbox", box).listedIf(box.active()) };        // eq. (36)
+                        EnergyTerm("airbox", boxAir).listedIf(boxAir.active()) };        // eq. (36)
 }
 
 Drum::Drum(const DrumConfig& config)
-    : cfg(validated(config)), k(1.0 / config.sampleRate_Hz), air(cfg.cavity, cfg.batter.radius_m),
+    : cfg(validated(config)), k(1.0 / config.sampleRate_Hz), cavityAir(cfg.cavity, cfg.batter.radius_m),
       batterHead(cfg.batter, k, cfg.kineticReserve(true)), carryHead(cfg.carry, k, cfg.kineticReserve(false)),
       wires(cfg.fittedSnares(), cfg.carry.radius_m, k), snareCoupling(cfg.snares, wires, carryHead),
-      mallets(makeMallets(cfg, batterHead, k)), malletCoupling(batterHead, mallets), airCoupling(batterHead, carryHead, air),
+      mallets(makeMallets(cfg, batterHead, k)), malletCoupling(batterHead, mallets), cavityCoupling(batterHead, carryHead, cavityAir),
       outside(cfg.cavity.model == AirModel::airbox ? OutsideAirSpec {} : cfg.outside, cfg.batter, cfg.carry, k),
       outsideCoupling(batterHead, carryHead, outside), modes(cfg.cavity, cfg.cavityModesUpTo_Hz(), cfg.batter.radius_m, k),
       modesCoupling(batterHead, carryHead, modes, cfg.cavity.modeCellSize_m), nearField(cfg.nearFieldSpec(), k),
       nearFieldCoupling(batterHead, carryHead, nearField, cfg.cavity.modeCellSize_m, cfg.outside.nearFieldCellSize_m),
-      listeners(cfg.mics, cfg.cavity, cfg.sampleRate_Hz, batterHead, carryHead), toHost(cfg.outputFactor()),
+      pressureMics(cfg.mics, cfg.cavity, cfg.sampleRate_Hz, batterHead, carryHead), toHost(cfg.outputFactor()),
       engaged(cfg.snares.engaged)
 {
     if (cfg.cavity.model == AirModel::airbox)
     {
-        box.build(cfg.airBoxSpec(), cfg.air.threads, cfg.cavity.shellDepth_m, k, batterHead, carryHead);
+        boxAir.build(cfg.airBoxSpec(), cfg.airBox.threads, cfg.cavity.shellDepth_m, k, batterHead, carryHead);
         placeAirMics(cfg);
         wiresSaved = wires.uNext;
         stepProfile.path = StepPath::airBox;
@@ -102,7 +102,7 @@ void Drum::placeAirMics(const DrumConfig& c)
 {
     std::array<AirPoint, DrumAirSpec::maxMics> points {};
     const int count = c.airMicPoints(points);
-    box.placeMics(points, count);
+    boxAir.placeMics(points, count);
 }
 
 void Drum::strike(double speed, double xFrac, double yFrac)
@@ -170,21 +170,21 @@ void Drum::applyLive(const DrumConfig& next) noexcept
 {
     // The air box keeps its model and box (its grid); the rest as for the other models.
     DrumConfig kept { DrumConfig::Unmapped {} };
-    if (box.active())
+    if (boxAir.active())
     {
         kept = next;
         kept.cavity.model = AirModel::airbox;
-        kept.air = cfg.air;
+        kept.airBox = cfg.airBox;
     }
-    const DrumConfig& n = box.active() ? kept : next;
+    const DrumConfig& n = boxAir.active() ? kept : next;
     const double gains[2] = { batterHead.forceGain(), carryHead.forceGain() };
     batterHead.setCoefficients(n.batter.tension_N_per_m, n.batter.sigma0_per_s, n.batter.sigma1_m2_per_s);
     carryHead.setCoefficients(n.carry.tension_N_per_m, n.carry.sigma0_per_s, n.carry.sigma1_m2_per_s);
-    if (box.active() && (gains[0] != batterHead.forceGain() || gains[1] != carryHead.forceGain()))
-        box.refresh(); // the embeddings' gains and the heads' response to forces (allocates nothing)
+    if (boxAir.active() && (gains[0] != batterHead.forceGain() || gains[1] != carryHead.forceGain()))
+        boxAir.refresh(); // the embeddings' gains and the heads' response to forces (allocates nothing)
     wires.setCoefficients(n.snares.tension_N, n.snares.sigma0_per_s, n.snares.sigma1_m2_per_s);
     snareCoupling.setLaw(n.snares.stiffness, n.snares.exponent);
-    air.setSpec(n.cavity, n.batter.radius_m);
+    cavityAir.setSpec(n.cavity, n.batter.radius_m);
     modes.setSpec(n.cavity);
     nearField.setSpec(n.nearFieldSpec());
     for (auto& m : mallets)
@@ -193,8 +193,8 @@ void Drum::applyLive(const DrumConfig& next) noexcept
     if (moved(n.mics.top, cfg.mics.top) || moved(n.mics.bottom, cfg.mics.bottom) || moved(n.mics.room, cfg.mics.room)
         || n.cavity.shellDepth_m != cfg.cavity.shellDepth_m)
     {
-        listeners.setPositions(n.mics, n.cavity.shellDepth_m); // a delay beyond the lines' length is held at it
-        if (box.active())
+        pressureMics.setPositions(n.mics, n.cavity.shellDepth_m); // a delay beyond the lines' length is held at it
+        if (boxAir.active())
             placeAirMics(n);
     }
     const HeadPrecision heads[2] = { cfg.batter.precision, cfg.carry.precision }; // the grids' own
@@ -298,9 +298,9 @@ template <class Lap>
         b = outsideCoupling.onBatter();
         c = outsideCoupling.onCarry();
     }
-    batterHead.computeFree(airCoupling.pressureOnBatter() + b.p0, b.px, b.py); // eq. (22) without the contact force
+    batterHead.computeFree(cavityCoupling.pressureOnBatter() + b.p0, b.px, b.py); // eq. (22) without the contact force
     lap(StepPhase::batterFree);
-    carryHead.computeFree(airCoupling.pressureOnCarry() + c.p0, c.px, c.py);   // eq. (23) without snare and end forces
+    carryHead.computeFree(cavityCoupling.pressureOnCarry() + c.p0, c.px, c.py);   // eq. (23) without snare and end forces
     lap(StepPhase::carryFree);
     if (engaged)
     {
@@ -350,7 +350,7 @@ template <class Lap>
 {
     // 1. The free updates: the air (eq. 25) and the components, the heads without pressure
     //    (the embeddings carry it, eq. 7).
-    box.computeFree();
+    boxAir.computeFree();
     lap(StepPhase::airBegin);
     batterHead.computeFree();
     lap(StepPhase::batterFree);
@@ -369,7 +369,7 @@ template <class Lap>
     for (size_t i = 0; i < mallets.size(); ++i)
         malletsSaved[i] = mallets[i].zNext;
     ContactSolveResult mallet;
-    const auto onBatter = box.solveBatter([&] { mallet = malletCoupling.step(); }, // eq. (44)-(45)
+    const auto onBatter = boxAir.solveBatter([&] { mallet = malletCoupling.step(); }, // eq. (44)-(45)
                                           [&] {
                                               for (size_t i = 0; i < mallets.size(); ++i)
                                                   mallets[i].zNext = malletsSaved[i];
@@ -381,7 +381,7 @@ template <class Lap>
         wiresSaved = wires.uNext;
         snareCoupling.saveTrial();
         SnareSolveResult snare;
-        onCarry = box.solveCarry([&] { snare = snareCoupling.step(); }, // eq. (48)-(50)
+        onCarry = boxAir.solveCarry([&] { snare = snareCoupling.step(); }, // eq. (48)-(50)
                                  [&] {
                                      wires.uNext = wiresSaved;
                                      snareCoupling.restoreTrial();
@@ -390,7 +390,7 @@ template <class Lap>
     }
     else
     {
-        onCarry = box.solveCarry([] {}, [] {});
+        onCarry = boxAir.solveCarry([] {}, [] {});
         noteSolves(mallet, nullptr);
     }
     stats.maxAirTrials = std::max({ stats.maxAirTrials, onBatter.trials, onCarry.trials });
@@ -398,9 +398,9 @@ template <class Lap>
     stats.airTrials += onBatter.trials + onCarry.trials;
     stats.maxAirMismatch = std::max({ stats.maxAirMismatch, onBatter.mismatch, onCarry.mismatch });
     lap(StepPhase::carryJoint);
-    box.joinAir(); // the rest of the air's update (step 1) ran meanwhile on the air's threads
+    boxAir.joinAir(); // the rest of the air's update (step 1) ran meanwhile on the air's threads
     lap(StepPhase::airJoin);
-    box.listen();
+    boxAir.listen();
     lap(StepPhase::signals);
 }
 
@@ -412,7 +412,7 @@ double Drum::step()
     if (hostPhase == 0)
     {
         simulate();
-        toHost.push({ signals.mix, signals.top_Pa, signals.bottom_Pa, signals.far_Pa });
+        toHost.push({ signals.mix, signals.top_Pa, signals.bottom_Pa, signals.room_Pa });
     }
     lastPhase = hostPhase;
     hostPhase = hostPhase + 1 == factor ? 0 : hostPhase + 1;
@@ -433,14 +433,14 @@ double Drum::simulate()
 template <class Lap>
 double Drum::stepWith(Lap& lap)
 {
-    if (box.active())
+    if (boxAir.active())
         stepCouplingsInAir(lap);
     else
         stepCouplings(lap);
     retrieveRisingMallets();
     lap(StepPhase::malletsFree);
 
-    airCoupling.step(); // dV^{n+1}
+    cavityCoupling.step(); // dV^{n+1}
     if (modes.active())
         modesCoupling.step(); // the modes' q^{n+1}
     if (outside.active())
@@ -448,7 +448,7 @@ double Drum::stepWith(Lap& lap)
     if (nearField.active())
         nearFieldCoupling.step({ modesCoupling.blockSums(0, nearFieldCoupling.cellSide(0)),
                                  modesCoupling.blockSums(1, nearFieldCoupling.cellSide(1)) }); // q^{n+1}
-    lap(box.active() ? StepPhase::signals : StepPhase::cavity); // the air box path counts it with the signals
+    lap(boxAir.active() ? StepPhase::signals : StepPhase::cavity); // the air box path counts it with the signals
 
     // 3. Energy at n + 1/2 and the microphones, then every time level moves on.
     if (trackEnergy)
@@ -459,17 +459,17 @@ double Drum::stepWith(Lap& lap)
 
     // the cells' sums of this step, where a coupling has taken them already
     auto sumsOf = [&](int head) {
-        const double* s = modesCoupling.blockSums(head, listeners.cellSide(head));
-        return s ? s : nearFieldCoupling.blockSums(head, listeners.cellSide(head));
+        const double* s = modesCoupling.blockSums(head, pressureMics.cellSide(head));
+        return s ? s : nearFieldCoupling.blockSums(head, pressureMics.cellSide(head));
     };
-    listeners.listen(batterHead, carryHead, { sumsOf(0), sumsOf(1) });
-    const bool boxMics = box.active() && cfg.air.numMics == 0; // the box's microphones are the drum's
-    signals.top_Pa = boxMics ? box.micPressure(0) : listeners.pressure(PressureMicrophones::top);
-    signals.bottom_Pa = boxMics ? box.micPressure(1) : listeners.pressure(PressureMicrophones::bottom);
-    signals.far_Pa = boxMics ? box.micPressure(2) : listeners.pressure(PressureMicrophones::room);
+    pressureMics.listen(batterHead, carryHead, { sumsOf(0), sumsOf(1) });
+    const bool boxMics = boxAir.active() && cfg.airBox.numMics == 0; // the box's microphones are the drum's
+    signals.top_Pa = boxMics ? boxAir.micPressure(0) : pressureMics.pressure(PressureMicrophones::top);
+    signals.bottom_Pa = boxMics ? boxAir.micPressure(1) : pressureMics.pressure(PressureMicrophones::bottom);
+    signals.room_Pa = boxMics ? boxAir.micPressure(2) : pressureMics.pressure(PressureMicrophones::room);
     const auto& m = cfg.mics;
     signals.mix = cfg.outputGain
-                * (m.mixTop * m.topGain * signals.top_Pa + m.mixBottom * m.bottomGain * signals.bottom_Pa + m.mixFar * m.farGain * signals.far_Pa);
+                * (m.mixTop * m.topGain * signals.top_Pa + m.mixBottom * m.bottomGain * signals.bottom_Pa + m.mixRoom * m.roomGain * signals.room_Pa);
     lap(StepPhase::signals);
 
     ++samplesRendered;
@@ -480,15 +480,15 @@ double Drum::stepWith(Lap& lap)
         wires.advance();
         snareCoupling.advance();
     }
-    air.advance();
+    cavityAir.advance();
     if (modes.active())
         modes.advance();
     if (outside.active())
         outside.advance();
     if (nearField.active())
         nearField.advance();
-    if (box.active())
-        box.advance();
+    if (boxAir.active())
+        boxAir.advance();
     for (auto& ml : mallets)
         ml.advance();
     lap(StepPhase::advance);
@@ -504,7 +504,7 @@ double Drum::output(Mic mic) const
     {
         case Mic::top: return cfg.outputGain * m.topGain * at(1, signals.top_Pa);
         case Mic::bottom: return cfg.outputGain * m.bottomGain * at(2, signals.bottom_Pa);
-        case Mic::far: return cfg.outputGain * m.farGain * at(3, signals.far_Pa);
+        case Mic::room: return cfg.outputGain * m.roomGain * at(3, signals.room_Pa);
         case Mic::mix: break;
     }
     return at(0, signals.mix);
@@ -538,16 +538,16 @@ void Drum::reset()
     carryHead.clear();
     wires.clear();
     snareCoupling.clear();
-    air.clear();
+    cavityAir.clear();
     modes.clear();
     outside.clear();
     nearField.clear();
-    box.clear();
+    boxAir.clear();
     for (auto& m : mallets)
         m.park();
     ledger.clearValues();
     signals = {};
-    listeners.clear();
+    pressureMics.clear();
     toHost.clear();
     hostPhase = lastPhase = 0;
     samplesRendered = 0;

@@ -1,10 +1,12 @@
 #pragma once
-// The assembled model (eq. 1-50; the air as the reduced cavity, or the air box, DrumAir.h), in the paper's
-// terms: components, each with its own state, free update and energy (the batter and carry
-// Membranes, the SnareWires, the Mallets, the Cavity), and couplings, each with its own forces,
-// solve and energy (MalletContact, SnareContact with the attached ends, CavityCoupling).
-// step() runs them in a fixed order; energyTerms() lists which of them each ledger term sums.
-// The only class the plugin and the renderer talk to.
+// The assembled model (eq. 1-50; the air as the reduced cavity with the outside air's channels,
+// or the air box, DrumAir.h), in the paper's terms: components, each with its own state, free
+// update and energy (the batter and carry Membranes, the SnareWires, the Mallets, the Cavity,
+// the OutsideAir, the CavityModes, the NearFieldAir, the air box), and couplings, each with its
+// own forces, solve and energy (MalletContact, SnareContact with the attached ends,
+// CavityCoupling, OutsideAirCoupling, CavityModesCoupling, NearFieldCoupling, the air box's
+// HeadEmbeddings); the PressureMicrophones listen. step() runs them in a fixed order;
+// energyTerms() lists which of them each ledger term sums. Hosts play it through DrumPlayer.
 
 #include "Articulations.h"
 #include "Cavity.h"
@@ -52,7 +54,7 @@ enum class Mic
 {
     top,    // the sound pressure above the batter
     bottom, // below the carry head (snare side)
-    far,    // at the room microphone
+    room,   // at the room microphone
     mix     // the weighted mix that step() returns
 };
 
@@ -62,7 +64,7 @@ struct MicSignals
 {
     double top_Pa = 0.0;
     double bottom_Pa = 0.0;
-    double far_Pa = 0.0;
+    double room_Pa = 0.0;
     double mix = 0.0;           // the output sample
 };
 
@@ -137,16 +139,16 @@ public:
     const SnareWires& snareWires() const { return wires; }
     const SnareContact& snareContact() const { return snareCoupling; }
     SnareContact& snareContact() { return snareCoupling; }
-    const Cavity& cavity() const { return air; }
+    const Cavity& cavity() const { return cavityAir; }
     const OutsideAir& outsideAir() const { return outside; }
     const CavityModes& cavityModes() const { return modes; }
     const NearFieldAir& nearFieldAir() const { return nearField; }
     // The air box (AirModel::airbox): active() false otherwise.
-    const DrumAir& airBox() const { return box; }
-    const PressureMicrophones& microphones() const { return listeners; }
+    const DrumAir& airBox() const { return boxAir; }
+    const PressureMicrophones& microphones() const { return pressureMics; }
     // The air microphones' pressure rho_a dt+ Psi (Pa) at the last step (air box only; 0 mics otherwise).
-    int numAirMics() const { return box.active() ? box.numMics() : 0; }
-    double airMicPressure(int i) const { return box.micPressure(i); }
+    int numAirMics() const { return boxAir.active() ? boxAir.numMics() : 0; }
+    double airMicPressure(int i) const { return boxAir.micPressure(i); }
     const Mallet& mallet(int i) const { return mallets[(size_t) i]; }
     bool isFinite() const;
 
@@ -177,24 +179,24 @@ private:
     DrumConfig cfg;
     double k;
     // Components and the couplings between them (each coupling after what it couples).
-    Cavity air;                  // component
+    Cavity cavityAir;            // component: the enclosed air as one pressure
     Membrane batterHead, carryHead; // components
     SnareWires wires;            // component
     SnareContact snareCoupling;  // coupling: wires - carry head
     std::vector<Mallet> mallets; // components; never resized after construction
     MalletContact malletCoupling; // coupling: mallets - batter
-    CavityCoupling airCoupling;  // coupling: heads - cavity
+    CavityCoupling cavityCoupling; // coupling: heads - cavity
     OutsideAir outside;          // component: the outside air's channels; inactive without
     OutsideAirCoupling outsideCoupling; // coupling: heads - outside air
     CavityModes modes;           // component: the enclosed air's own modes; inactive without
     CavityModesCoupling modesCoupling; // coupling: heads - cavity modes
     NearFieldAir nearField;      // component: the near field's mass on the heads' higher modes; inactive without
     NearFieldCoupling nearFieldCoupling; // coupling: heads - near field
-    DrumAir box;                 // component (air box) with its couplings to the heads; inactive without
+    DrumAir boxAir;              // component (the air box) with its couplings to the heads; inactive without
     std::vector<double> wiresSaved; // air box: the wires' free u^{n+1}, for the joint solve's trials
     std::array<double, MalletContact::maxMallets> malletsSaved {};
 
-    PressureMicrophones listeners; // the microphones: a listener, no energy, no force
+    PressureMicrophones pressureMics; // the microphones: a listener, no energy, no force
     HostRateInterpolator toHost;   // the signals at the host's rate
     int hostPhase = 0, lastPhase = 0; // of the next and the last host sample, 0 .. factor - 1
     EnergyLedger ledger;

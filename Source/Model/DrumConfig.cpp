@@ -56,7 +56,7 @@ void validateMembrane(const MembraneSpec& m, double k, double reserve)
 }
 void validateAirBox(const DrumConfig& c)
 {
-    const DrumAirSpec& a = c.air;
+    const DrumAirSpec& a = c.airBox;
     require(a.walls == AirWalls::absorbing || a.walls == AirWalls::reflecting, "air box walls must be absorbing or reflecting",
             (double) a.walls);
     require(std::isfinite(a.sigma_m) && a.sigma_m >= 0.0 && a.sigma_m <= 1e-3, "air box sigma_a must be within 0..1e-3 m", a.sigma_m);
@@ -189,7 +189,7 @@ void DrumConfig::validate() const
     }
     require(mics.top.z_m > 0.0 && mics.bottom.z_m < 0.0, "the top microphone must face the batter and the bottom one the carry head",
             mics.top.z_m);
-    for (double g : { mics.topGain, mics.bottomGain, mics.farGain, mics.mixTop, mics.mixBottom, mics.mixFar })
+    for (double g : { mics.topGain, mics.bottomGain, mics.roomGain, mics.mixTop, mics.mixBottom, mics.mixRoom })
         require(std::isfinite(g), "microphone gains must be finite", g);
     require(std::isfinite(outputGain), "output gain must be finite", outputGain);
     if (cavity.model == AirModel::airbox)
@@ -203,11 +203,11 @@ AirBoxSpec DrumConfig::airBoxSpec() const
     AirBoxSpec s;
     s.soundSpeed_m_per_s = cavity.soundSpeed_m_per_s;
     s.density_kg_per_m3 = cavity.airDensity_kg_per_m3;
-    s.sigma_m = air.sigma_m;
-    s.gridCoarseness = air.gridCoarseness;
+    s.sigma_m = airBox.sigma_m;
+    s.gridCoarseness = airBox.gridCoarseness;
     for (int a = 0; a < 3; ++a)
-        s.size_m[(size_t) a] = air.size_m[(size_t) a] > 0.0 ? air.size_m[(size_t) a] : extent[a] + 2.0 * air.margin_m;
-    s.walls = air.walls;
+        s.size_m[(size_t) a] = airBox.size_m[(size_t) a] > 0.0 ? airBox.size_m[(size_t) a] : extent[a] + 2.0 * airBox.margin_m;
+    s.walls = airBox.walls;
     s.shell = true;
     s.shellRadius_m = R;
     s.shellDepth_m = H;
@@ -217,10 +217,10 @@ AirBoxSpec DrumConfig::airBoxSpec() const
 
 int DrumConfig::airMicPoints(std::array<AirPoint, DrumAirSpec::maxMics>& out) const
 {
-    if (air.numMics > 0)
+    if (airBox.numMics > 0)
     {
-        const int n = std::min(air.numMics, DrumAirSpec::maxMics);
-        std::copy_n(air.mics.begin(), n, out.begin());
+        const int n = std::min(airBox.numMics, DrumAirSpec::maxMics);
+        std::copy_n(airBox.mics.begin(), n, out.begin());
         return n;
     }
     const AirBoxSpec box = airBoxSpec();
@@ -265,8 +265,8 @@ DrumConfig DrumConfig::lossless() const
     c.carry.sigma1_m2_per_s = 0.0;
     c.snares.sigma0_per_s = 0.0;
     c.snares.sigma1_m2_per_s = 0.0;
-    c.air.walls = AirWalls::reflecting;
-    c.air.sigma_m = 0.0;
+    c.airBox.walls = AirWalls::reflecting;
+    c.airBox.sigma_m = 0.0;
     for (RadiationChannelSpec* ch : { &c.outside.monopole, &c.outside.dipole, &c.outside.tiltSum, &c.outside.tiltDiff })
         ch->resistance = std::numeric_limits<double>::infinity();
     c.outside.nearFieldDamping = 0.0;
@@ -343,7 +343,7 @@ DrumConfig mapParametersAt(const ParameterSet& p, double sampleRate_Hz, double c
     c.cavity.gridShellDepth_m = spec(ParamId::shellDepth).minValue;
     c.outside.enabled = p.get(ParamId::outsideAir) > 0.5;
     c.outside.nearField = p.get(ParamId::nearField) > 0.5;
-    c.air.sigma_m = p.get(ParamId::airLoss);
+    c.airBox.sigma_m = p.get(ParamId::airLoss);
     // ParamId::keepUp is the plug-in's: it lowers the bandwidth before the mapping.
     // ParamId::offlineAirBox is the host's, not the drum's: the plug-in reads it to choose the air
     // model of its offline renders (it arrives here as the air model).
@@ -357,7 +357,7 @@ DrumConfig mapParametersAt(const ParameterSet& p, double sampleRate_Hz, double c
 
     c.mics.mixTop = p.get(ParamId::micTop);
     c.mics.mixBottom = p.get(ParamId::micBottom);
-    c.mics.mixFar = p.get(ParamId::micRoom);
+    c.mics.mixRoom = p.get(ParamId::micRoom);
     // The top mic's point off the snares' line (the x axis); the bottom mic's close to it.
     const double R = c.batter.radius_m, H = c.cavity.shellDepth_m;
     const double top = p.get(ParamId::micTopPosition) * R, bottom = p.get(ParamId::micBottomPosition) * R;

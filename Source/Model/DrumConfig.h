@@ -40,7 +40,7 @@ struct DrumConfig
     MembraneSpec carry { .radius_m = 0.1778, .density_kg_per_m2 = 0.106 }; // 3 mil PET
     SnareSpec snares;
     CavitySpec cavity;
-    DrumAirSpec air;                    // used when cavity.model == AirModel::airbox
+    DrumAirSpec airBox;                 // used when cavity.model == AirModel::airbox
     OutsideAirSpec outside;             // with the cavity or no air, not in the air box
     MicSpec mics;
     MalletSpec mallet;
@@ -75,7 +75,7 @@ struct DrumConfig
     // The air box of AirModel::airbox: its size resolved, the rigid shell with closed ends
     // (the heads replace the discs).
     AirBoxSpec airBoxSpec() const;
-    // The air microphones: air.mics, or when none is given the drum's top, bottom and room
+    // The air microphones: airBox.mics, or when none is given the drum's top, bottom and room
     // microphones (MicSpec), each clamped inside the box, a cell and a half from its walls.
     int airMicPoints(std::array<AirPoint, DrumAirSpec::maxMics>& out) const;
 };

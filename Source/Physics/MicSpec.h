@@ -19,8 +19,8 @@ struct MicSpec
     double fineCellSize_m = 0.008;       // and of those within three cells of a microphone's foot
     double topGain = 5.7e-3;             // output per Pa
     double bottomGain = 3.7e-3;          // output per Pa
-    double farGain = 0.041;              // output per Pa (the room)
-    double mixTop = 0.0, mixBottom = 0.0, mixFar = 0.0; // weights of the mixed output (from the schema)
+    double roomGain = 0.041;              // output per Pa (the room)
+    double mixTop = 0.0, mixBottom = 0.0, mixRoom = 0.0; // weights of the mixed output (from the schema)
 };
 
 } // namespace snaresim

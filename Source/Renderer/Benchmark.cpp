@@ -189,7 +189,7 @@ RenderStats benchmarkDrum(const ParameterSet& params, const DrumConfig& config, 
     if (airBox)
     {
         AirBox air(config.airBoxSpec(), 1.0 / plan.sampleRate_Hz); // the drum's grid, shell and closed ends
-        figures.air = measureAirSpeed(air, config.air.threads);
+        figures.air = measureAirSpeed(air, config.airBox.threads);
     }
     stats.bench = figures;
     return stats;

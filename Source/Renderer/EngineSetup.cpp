@@ -97,7 +97,7 @@ void applyAirOptions(const RenderJob& job, DrumConfig& config)
     if (job.boxSize && job.boxMargin)
         throw UserError("--box and --box-margin: give one or the other");
 
-    auto& air = config.air;
+    auto& air = config.airBox;
     if ((int) job.airMics.size() > DrumAirSpec::maxMics)
         throw UserError("--air-mic: at most " + std::to_string(DrumAirSpec::maxMics) + " air microphones");
     const double R = config.batter.radius_m, H = config.cavity.shellDepth_m;

@@ -46,9 +46,9 @@ std::vector<Channel> micChannels(MicOutput mic, int numAirMics)
     {
         case MicOutput::top: return { { Mic::top } };
         case MicOutput::bottom: return { { Mic::bottom } };
-        case MicOutput::far: return { { Mic::far } };
+        case MicOutput::far: return { { Mic::room } };
         case MicOutput::mix: return { { Mic::mix } };
-        case MicOutput::all: return { { Mic::top }, { Mic::bottom }, { Mic::far }, { Mic::mix } };
+        case MicOutput::all: return { { Mic::top }, { Mic::bottom }, { Mic::room }, { Mic::mix } };
         case MicOutput::air:
         {
             std::vector<Channel> channels;

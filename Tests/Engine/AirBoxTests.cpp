@@ -1,6 +1,7 @@
 // The 3D air box (eq. 5, 25, 36, 41, 51): grid bound, energy to round-off, absorbing walls,
 // free-field propagation.
 
+#include "Report.h"
 #include "AirBox.h"
 
 #include <catch2/catch.hpp>
@@ -35,7 +36,7 @@ TEST_CASE("the air grid follows the stability bound eq. 41", "[airbox]")
     CHECK(box.spacing() == Approx(std::sqrt(3.0 * c * c * k * k + 6.0 * c * sig * k)).epsilon(1e-14));
     CHECK(box.spacing() == Approx(13.47e-3).epsilon(0.001));
     // a 0.6 m cube: ceil(0.6 / h) = 45 points a side, 91 125 in all
-    std::printf("air box 0.6 m cube at 44.1 kHz: h = %.5f m, %d x %d x %d = %ld points\n", box.spacing(), box.nx(), box.ny(),
+    snaresim::test::reportf("air box 0.6 m cube at 44.1 kHz: h = %.5f m, %d x %d x %d = %ld points\n", box.spacing(), box.nx(), box.ny(),
                 box.nz(), box.numPoints());
     CHECK(box.nx() == 45);
     CHECK(box.numPoints() == 91125);
@@ -101,7 +102,7 @@ TEST_CASE("lossless air in a reflecting box with the shell conserves its energy 
         box.computeNext();
         drift = std::max(drift, std::abs(box.energy() - e0) / e0);
     }
-    std::printf("lossless air box, reflecting walls, shell closed, %ld points: energy relative variation %.3g over 10 000 steps\n",
+    snaresim::test::reportf("lossless air box, reflecting walls, shell closed, %ld points: energy relative variation %.3g over 10 000 steps\n",
                 box.numPoints(), drift);
     CHECK(drift < 1e-11);
 }
@@ -129,7 +130,7 @@ TEST_CASE("the air's losses are exactly what its energy loses", "[airbox][energy
         lost += q;
         prev = e;
     }
-    std::printf("lossy air box: |energy(n+1) + loss - energy(n)| / energy(0) at most %.3g; %.3g of the energy lost, %.3g left\n", worst,
+    snaresim::test::reportf("lossy air box: |energy(n+1) + loss - energy(n)| / energy(0) at most %.3g; %.3g of the energy lost, %.3g left\n", worst,
                 lost / e0, prev / e0);
     CHECK(worst < 1e-13);
 }
@@ -154,7 +155,7 @@ TEST_CASE("absorbing walls let a pulse leave the box and the energy never rises"
         rise = std::max(rise, (e - prev) / e0);
         prev = e;
     }
-    std::printf("absorbing walls: largest rise from one step to the next %.3g of energy(0); after %d steps %.3g of the energy is left\n",
+    snaresim::test::reportf("absorbing walls: largest rise from one step to the next %.3g of energy(0); after %d steps %.3g of the energy is left\n",
                 rise, steps, prev / e0);
     CHECK(rise < 1e-14);      // within round-off of the total
     CHECK(prev < 0.05 * e0);  // most of it has left
@@ -203,7 +204,7 @@ TEST_CASE("a pulse in free field arrives after r / c and falls as 1 / r", "[airb
         arrival[m] = (at[m] + 0.5 + offset) / fs; // p from Psi^{n+1} - Psi^n is at (n + 1/2) k
     }
     const double ratio = best[0] / best[1];
-    std::printf("free field: arrival at %.3f m after %.4f ms (r/c = %.4f ms), at %.3f m after %.4f ms (r/c = %.4f ms); "
+    snaresim::test::reportf("free field: arrival at %.3f m after %.4f ms (r/c = %.4f ms), at %.3f m after %.4f ms (r/c = %.4f ms); "
                 "h / c = %.4f ms; peak ratio %.4f against r2/r1 = %.4f\n",
                 r1, 1e3 * arrival[0], 1e3 * r1 / c, r2, 1e3 * arrival[1], 1e3 * r2 / c, 1e3 * h / c, ratio, r2 / r1);
     CHECK(std::abs(arrival[0] - r1 / c) < h / c);
@@ -239,7 +240,7 @@ TEST_CASE("the closed shell keeps the air inside it", "[airbox]")
                 const bool in = x * x + y * y < spec.shellRadius_m * spec.shellRadius_m && std::abs(z) < 0.5 * spec.shellDepth_m;
                 (in ? inside : outside) = std::max(in ? inside : outside, v);
             }
-    std::printf("closed shell: after 500 steps |Psi| at most %.3g inside, %.3g outside\n", inside, outside);
+    snaresim::test::reportf("closed shell: after 500 steps |Psi| at most %.3g inside, %.3g outside\n", inside, outside);
     CHECK(inside > 1e-3);
     CHECK(outside < 1e-12 * inside);
 }

@@ -11,6 +11,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "Report.h"
 #include "Drum.h"
 #include "DrumConfig.h"
 #include "Parameters.h"
@@ -211,7 +212,7 @@ TEST_CASE("every parameter at its limits and random combinations play a fortissi
         worstRise = std::max(worstRise, o.worstRise);
     }
 
-    std::cout << "corners: " << list.size() << " drums (" << 2 * kNumParameters << " at parameter limits, "
+    snaresim::test::report() << "corners: " << list.size() << " drums (" << 2 * kNumParameters << " at parameter limits, "
               << kRandomCombinations << " random, " << kAirBoxCombinations << " random in the air box), " << seconds
               << " s fortissimo roll each (the air box: " << kAirBoxShare * seconds << " s) at "
               << kSampleRate << " Hz on " << threads << " threads; failed builds " << failedBuilds

@@ -2,6 +2,7 @@
 // heads' contacts solved jointly with their air, passivity with losses, the heads' (0,1) pair
 // through the air, the paper's section 5.2 in the box, and the config's checks.
 
+#include "Report.h"
 #include "BatterModes.h"
 #include "ModePairs.h"
 #include "Section52.h"
@@ -52,7 +53,7 @@ TEST_CASE("the whole drum in a lossless, reflecting air box conserves energy to 
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const auto& st = drum.solverStats();
-    std::printf("air box, %s, 20 wires: relative energy variation %.3g over %d steps; air's largest energy %.3g J "
+    snaresim::test::reportf("air box, %s, 20 wires: relative energy variation %.3g over %d steps; air's largest energy %.3g J "
                 "(%.2g of the strike's); contact trials per head and step: most %d, mean %.2f, capped %ld; psi resets removed %.3g; %.1f s\n",
                 nameOf(cfg.snares.scheme), drift, steps, airPeak, airPeak / e0, st.maxAirTrials, st.airTrials / (2.0 * steps), st.airCapped,
                 drum.energy().dissipated_J / e0, seconds);
@@ -68,8 +69,8 @@ TEST_CASE("the whole drum in a lossless, reflecting air box conserves energy to 
 TEST_CASE("the drum in an absorbing, lossy air box never gains energy from one step to the next", "[drum][airbox][energy]")
 {
     DrumConfig cfg = inAirBox(test::wholeDrum()); // the default losses, sigma_a = 2e-6 m, absorbing walls
-    REQUIRE(cfg.air.walls == AirWalls::absorbing);
-    REQUIRE(cfg.air.sigma_m > 0.0);
+    REQUIRE(cfg.airBox.walls == AirWalls::absorbing);
+    REQUIRE(cfg.airBox.sigma_m > 0.0);
     Drum drum(cfg);
     drum.setEnergyTracking(true);
     drum.strike(5.0, 0.3, 0.0);
@@ -84,7 +85,7 @@ TEST_CASE("the drum in an absorbing, lossy air box never gains energy from one s
         airLoss += drum.airBox().stepLoss();
         previous = e;
     }
-    std::printf("air box, absorbing walls, losses on: largest rise from one step to the next %.3g of the strike's energy; "
+    snaresim::test::reportf("air box, absorbing walls, losses on: largest rise from one step to the next %.3g of the strike's energy; "
                 "balance varies by %.3g; the air's losses took %.3g J (%.3g of it)\n",
                 worstRise, drift, airLoss, airLoss / e0);
     CHECK(worstRise <= 1e-14);
@@ -104,11 +105,11 @@ TEST_CASE("the air box couples the heads: their (0,1) in-phase and anti-phase pa
     const test::ModePair inCavity = test::measuredPairs(cavityRun, {});
     const test::ModePair inBox = test::measuredPairs(boxRun, {});
     DrumConfig open = inAirBox(cfg).lossless();
-    open.air.walls = AirWalls::absorbing; // the box's own modes damped
+    open.airBox.walls = AirWalls::absorbing; // the box's own modes damped
     // the in-phase mode radiates and is damped (the strongest in-phase peak); the anti-phase one within 5 %
     const test::SweptVolumes openRun = test::sweptVolumes(open);
     const test::ModePair inOpenBox = test::measuredPairs(openRun, { 0.0, inBox.antiPhase });
-    std::printf("(0,1) pair, 14 cm shell: cavity %.1f / %.1f Hz; air box 0.6 m, reflecting walls %.1f / %.1f Hz; "
+    snaresim::test::reportf("(0,1) pair, 14 cm shell: cavity %.1f / %.1f Hz; air box 0.6 m, reflecting walls %.1f / %.1f Hz; "
                 "absorbing walls %.1f / %.1f Hz (in phase / anti-phase)\n",
                 inCavity.inPhase, inCavity.antiPhase, inBox.inPhase, inBox.antiPhase, inOpenBox.inPhase, inOpenBox.antiPhase);
     // The air inside the shell is a spring between the heads, so the anti-phase mode lies above
@@ -132,7 +133,7 @@ TEST_CASE("the air box couples the heads: their (0,1) in-phase and anti-phase pa
     const double boxAnti = test::modeDecay_dB_per_s(boxRun, -1.0, inBox.antiPhase);
     const double openIn = test::modeDecay_dB_per_s(openRun, +1.0, inOpenBox.inPhase);
     const double openAnti = test::modeDecay_dB_per_s(openRun, -1.0, inOpenBox.antiPhase);
-    std::printf("(0,1) pair decay (dB/s, in phase / anti-phase): cavity %.3f / %.3f; air box, reflecting walls %.3f / %.3f; "
+    snaresim::test::reportf("(0,1) pair decay (dB/s, in phase / anti-phase): cavity %.3f / %.3f; air box, reflecting walls %.3f / %.3f; "
                 "absorbing walls %.1f / %.1f (T60 %.3f / %.3f s)\n",
                 cavityIn, cavityAnti, boxIn, boxAnti, openIn, openAnti, 60.0 / openIn, 60.0 / openAnti);
     // Lossless: no slope beyond the beating of neighbouring modes, 1 dB over the fit's span (at most 80 % of the record).
@@ -146,7 +147,7 @@ TEST_CASE("the paper's section 5.2 in the air box: when the wires swing down and
 {
     const test::SnareTimes cavity = test::section52(test::section52Config(AirModel::cavity));
     const test::SnareTimes box = test::section52(test::section52Config(AirModel::airbox));
-    std::printf("section 5.2 (%d wire points): paper: lowest 6 ms, hit about 9 ms (0 ms: none in 25 ms)\n"
+    snaresim::test::reportf("section 5.2 (%d wire points): paper: lowest 6 ms, hit about 9 ms (0 ms: none in 25 ms)\n"
                 "  cavity:  wires' mean lowest at %.2f ms (%.3f mm); all off the head %.2f ms, back on it %.2f ms; "
                 "first hit after 1 ms apart %.2f ms\n"
                 "  air box: wires' mean lowest at %.2f ms (%.3f mm); all off the head %.2f ms, back on it %.2f ms; "
@@ -163,7 +164,7 @@ TEST_CASE("the paper's section 5.2 in the air box: when the wires swing down and
     }
     // The air outside loads both heads with its mass (the cavity has none): the carry head, and
     // the wires with it, reach their lowest point later in the box.
-    std::printf("  carry head under the wires lowest at %.2f ms (cavity), %.2f ms (air box)\n", cavity.carryLowest_ms, box.carryLowest_ms);
+    snaresim::test::reportf("  carry head under the wires lowest at %.2f ms (cavity), %.2f ms (air box)\n", cavity.carryLowest_ms, box.carryLowest_ms);
     CHECK(box.carryLowest_ms > cavity.carryLowest_ms);
     CHECK(box.swingLowest_ms > cavity.swingLowest_ms);
 }
@@ -195,16 +196,16 @@ TEST_CASE("the air microphones hear the strike, and the defaults are the drum's 
             peak[i] = std::max(peak[i], std::abs(drum.airMicPressure(i)));
         CHECK(drum.lastSignals().top_Pa == drum.airMicPressure(0));
         CHECK(drum.lastSignals().bottom_Pa == drum.airMicPressure(1));
-        CHECK(drum.lastSignals().far_Pa == drum.airMicPressure(2));
+        CHECK(drum.lastSignals().room_Pa == drum.airMicPressure(2));
     }
-    std::printf("air mics, 3 m/s strike: peak |p| top %.3g Pa, bottom %.3g Pa, far %.3g Pa\n", peak[0], peak[1], peak[2]);
+    snaresim::test::reportf("air mics, 3 m/s strike: peak |p| top %.3g Pa, bottom %.3g Pa, far %.3g Pa\n", peak[0], peak[1], peak[2]);
     CHECK(peak[0] > peak[2]); // nearer is louder
     for (double p : peak)
         CHECK((p > 1e-3 && std::isfinite(p)));
 
     DrumConfig one = cfg;
-    one.air.numMics = 1;
-    one.air.mics[0] = { 0.0, 0.0, 0.2 };
+    one.airBox.numMics = 1;
+    one.airBox.mics[0] = { 0.0, 0.0, 0.2 };
     Drum single(one);
     CHECK(single.numAirMics() == 1);
     CHECK(single.airBox().micPoint(0).z_m == 0.2);
@@ -214,11 +215,11 @@ TEST_CASE("the drum in the air box plays the same numbers on any number of threa
 {
     // The air's bulk runs on the threads while the heads' joint solves run on the caller.
     DrumConfig cfg = inAirBox(test::wholeDrum());
-    cfg.air.size_m = { 0.48, 0.48, 0.4 };
+    cfg.airBox.size_m = { 0.48, 0.48, 0.4 };
     Drum one(cfg);
-    cfg.air.threads = GENERATE(2, 3);
+    cfg.airBox.threads = GENERATE(2, 3);
     Drum many(cfg);
-    REQUIRE(many.airBox().air().threads() == cfg.air.threads);
+    REQUIRE(many.airBox().air().threads() == cfg.airBox.threads);
     one.setEnergyTracking(true);
     many.setEnergyTracking(true);
     one.strike(6.0, 0.3, 0.0);
@@ -250,47 +251,47 @@ TEST_CASE("air box configs that cannot work throw std::invalid_argument with a r
         }
     };
     DrumConfig c = good;
-    c.air.size_m = { 0.3, 0.6, 0.6 }; // narrower than the drum
+    c.airBox.size_m = { 0.3, 0.6, 0.6 }; // narrower than the drum
     rejects(c, "does not hold the drum");
     c = good;
-    c.air.size_m = { 0.6, 0.6, 0.16 }; // the shell (0.14 m) with no air beyond the heads
+    c.airBox.size_m = { 0.6, 0.6, 0.16 }; // the shell (0.14 m) with no air beyond the heads
     rejects(c, "does not hold the drum");
     c = good;
-    c.air.size_m = { 0.0, 0.0, 0.0 };
-    c.air.margin_m = 0.0; // the drum's own extent: no air around it
+    c.airBox.size_m = { 0.0, 0.0, 0.0 };
+    c.airBox.margin_m = 0.0; // the drum's own extent: no air around it
     rejects(c, "does not hold the drum");
     c = good;
-    c.air.gridCoarseness = 0.5;
+    c.airBox.gridCoarseness = 0.5;
     rejects(c, "stability bound (eq. 41)");
     c = good;
-    c.air.sigma_m = -1e-6;
+    c.airBox.sigma_m = -1e-6;
     rejects(c, "sigma_a");
     c = good;
-    c.air.threads = 0;
+    c.airBox.threads = 0;
     rejects(c, "threads");
     c = good;
-    c.air.numMics = 1;
-    c.air.mics[0] = { 0.0, 0.0, 0.5 }; // above the 0.6 m box
+    c.airBox.numMics = 1;
+    c.airBox.mics[0] = { 0.0, 0.0, 0.5 }; // above the 0.6 m box
     rejects(c, "inside the air box");
     c = good;
-    c.air.numMics = 9;
+    c.airBox.numMics = 9;
     rejects(c, "air microphones");
     c = good;
-    c.air.size_m = { 20.0, 20.0, 20.0 };
+    c.airBox.size_m = { 20.0, 20.0, 20.0 };
     rejects(c, "too many points");
 
     // A box given by its margin: the drum plus 0.1 m of air on every side.
     c = good;
-    c.air.size_m = { 0.0, 0.0, 0.0 };
-    c.air.margin_m = 0.1;
+    c.airBox.size_m = { 0.0, 0.0, 0.0 };
+    c.airBox.margin_m = 0.1;
     CHECK(c.airBoxSpec().size_m[0] == Approx(2 * 0.1778 + 0.2));
     CHECK(c.airBoxSpec().size_m[2] == Approx(c.cavity.shellDepth_m + 0.2));
     CHECK_NOTHROW(c.validate());
 
     // lossless(): reflecting walls, no sigma_a
     const DrumConfig l = good.lossless();
-    CHECK(l.air.walls == AirWalls::reflecting);
-    CHECK(l.air.sigma_m == 0.0);
+    CHECK(l.airBox.walls == AirWalls::reflecting);
+    CHECK(l.airBox.sigma_m == 0.0);
 }
 
 TEST_CASE("the air box's air loads the batter's higher modes with the near field's mass, rho_a / k on each side", "[drum][airbox][modes][nearfield][slow]")
@@ -314,9 +315,9 @@ TEST_CASE("the air box's air loads the batter's higher modes with the near field
     DrumConfig vacuum = cfg;
     vacuum.cavity.model = AirModel::none;
     DrumConfig box = inAirBox(cfg);
-    box.air.walls = AirWalls::absorbing;
-    box.air.size_m = { 0.7, 0.7, 0.7 }; // near-field loading: a 1.3 m box moves these modes by 0.6 % at most
-    box.air.threads = 2;
+    box.airBox.walls = AirWalls::absorbing;
+    box.airBox.size_m = { 0.7, 0.7, 0.7 }; // near-field loading: a 1.3 m box moves these modes by 0.6 % at most
+    box.airBox.threads = 2;
     DrumConfig realTime = cfg;
     realTime.outside.enabled = realTime.outside.nearField = true;
     DrumConfig channelsOnly = realTime;
@@ -338,7 +339,7 @@ TEST_CASE("the air box's air loads the batter's higher modes with the near field
         const double fBox = test::peakNear(inBox[q], fs, fVacuum);
         const double fRealTime = test::peakNear(inRealTime[q], fs, fVacuum);
         const double fChannels = test::peakNear(withoutNearField[q], fs, fVacuum);
-        std::printf("batter %s: vacuum %.1f Hz, rho_a / k loading %.1f Hz, air box %.1f Hz (%+.1f %%); real time %.1f Hz (%+.1f %% "
+        snaresim::test::reportf("batter %s: vacuum %.1f Hz, rho_a / k loading %.1f Hz, air box %.1f Hz (%+.1f %%); real time %.1f Hz (%+.1f %% "
                     "from the box), without the near field %.1f Hz (%+.1f %%)\n",
                     modes[q].name, fVacuum, predicted, fBox, 100.0 * (fBox / predicted - 1.0), fRealTime, 100.0 * (fRealTime / fBox - 1.0),
                     fChannels, 100.0 * (fChannels / fBox - 1.0));

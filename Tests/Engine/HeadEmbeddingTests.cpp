@@ -2,6 +2,7 @@
 // energy to round-off on a head finer and one coarser than the air, a force on a head coarser
 // than the air is solved with it in one go, and the air's mass lowers the head's (0,1) mode.
 
+#include "Report.h"
 #include "AirBox.h"
 #include "HeadEmbedding.h"
 #include "Membrane.h"
@@ -65,7 +66,7 @@ TEST_CASE("the embedding's J conserves volume and links the head's nodes to the 
         Membrane head(losslessBatter(coarseness), k);
         HeadEmbedding embed(air, head, 0.0);
         const CircularGrid& g = head.grid();
-        std::printf("embedding: head h = %.2f mm (%d nodes), air h = %.2f mm: %d air nodes over the head, %d groups, J reaches %d "
+        snaresim::test::reportf("embedding: head h = %.2f mm (%d nodes), air h = %.2f mm: %d air nodes over the head, %d groups, J reaches %d "
                     "head nodes; volume the air sees / the head's %.15f\n",
                     1e3 * g.spacing(), g.numInterior(), 1e3 * air.spacing(), embed.airNodes(), embed.groups(), embed.headNodes(),
                     embed.volumeRatio());
@@ -102,7 +103,7 @@ TEST_CASE("a head embedded in lossless air conserves the total energy to round-o
     AirBox air(losslessBox(), k);
     Membrane head(losslessBatter(coarseness), k);
     HeadEmbedding embed(air, head, 0.0);
-    std::printf("embedding: head h = %.3f mm (%d nodes), air h = %.3f mm (%ld points); %d air nodes over the head, J reaches %d head nodes\n",
+    snaresim::test::reportf("embedding: head h = %.3f mm (%d nodes), air h = %.3f mm (%ld points); %d air nodes over the head, J reaches %d head nodes\n",
                 1e3 * head.grid().spacing(), head.grid().numInterior(), 1e3 * air.spacing(), air.numPoints(), embed.airNodes(),
                 embed.headNodes());
     REQUIRE(embed.airNodes() > 500);
@@ -123,7 +124,7 @@ TEST_CASE("a head embedded in lossless air conserves the total energy to round-o
         air.advance();
         head.advance();
     }
-    std::printf("embedded head (h = %.2f mm), lossless: total energy relative variation %.3g over %d steps; the air held up to %.3g of it\n",
+    snaresim::test::reportf("embedded head (h = %.2f mm), lossless: total energy relative variation %.3g over %d steps; the air held up to %.3g of it\n",
                 1e3 * head.grid().spacing(), drift, steps, airMax);
     CHECK(drift < 1e-11);
     CHECK(airMax > 0.05); // the coupling really moved energy into the air
@@ -170,7 +171,7 @@ TEST_CASE("the air's mass lowers the head's (0,1) mode", "[airbox][embedding][sl
     }
     const double f0 = peakFrequency(vacuum, 100.0, 300.0);
     const double fr = peakFrequency(inAir[0], 60.0, 300.0), fa = peakFrequency(inAir[1], 60.0, 300.0);
-    std::printf("(0,1) mode of the batter (T = 3050 N/m): %.1f Hz in vacuum, %.1f Hz in a 0.6 m box of air with reflecting walls, "
+    snaresim::test::reportf("(0,1) mode of the batter (T = 3050 N/m): %.1f Hz in vacuum, %.1f Hz in a 0.6 m box of air with reflecting walls, "
                 "%.1f Hz with absorbing walls\n",
                 f0, fr, fa);
     CHECK(f0 == Approx(200.0).epsilon(0.01));
@@ -197,7 +198,7 @@ TEST_CASE("the air's mass lowers the head's (0,1) mode", "[airbox][embedding][sl
     const double fOne = f0 / std::sqrt(1.0 + one / modal), fTwo = f0 / std::sqrt(1.0 + 2.0 * one / modal);
     // Decay: with reflecting walls nothing leaves the box; absorbing walls take what the head radiates.
     const double rr = test::bandDecay_dB_per_s(inAir[0], fs, fr), ra = test::bandDecay_dB_per_s(inAir[1], fs, fa);
-    std::printf("(0,1) mode: drop %.1f %% (reflecting) and %.1f %% (absorbing); a baffled head with air on one side %.1f Hz (%.1f %%), "
+    snaresim::test::reportf("(0,1) mode: drop %.1f %% (reflecting) and %.1f %% (absorbing); a baffled head with air on one side %.1f Hz (%.1f %%), "
                 "on both %.1f Hz (%.1f %%); decay %.3f dB/s (reflecting), %.1f dB/s (absorbing, T60 %.2f s)\n",
                 100.0 * (1.0 - fr / f0), 100.0 * (1.0 - fa / f0), fOne, 100.0 * (1.0 - fOne / f0), fTwo, 100.0 * (1.0 - fTwo / f0), rr, ra,
                 60.0 / ra);
@@ -248,7 +249,7 @@ TEST_CASE("a force on a head coarser than the air is solved with the air in one 
             second = embed.correct() / embed.scale();
         }
         embed.finish();
-        std::printf("a 2 N force at four nodes, head h = %.2f mm: mismatch after the first trial %.3g of max |w|, after the second %.3g\n",
+        snaresim::test::reportf("a 2 N force at four nodes, head h = %.2f mm: mismatch after the first trial %.3g of max |w|, after the second %.3g\n",
                     1e3 * head.grid().spacing(), first, second);
         if (! embed.airCoarser())
             CHECK(first <= 1e-15);

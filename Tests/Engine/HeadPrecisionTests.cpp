@@ -246,7 +246,7 @@ TEST_CASE("the air box keeps its heads in double precision", "[precision][airbox
     p.set(ParamId::airModel, (double) AirModel::airbox);
     DrumConfig asked = makeDrumConfig(p, 48000.0);
     CHECK(asked.batter.precision == HeadPrecision::single_precision); // the parameter as set
-    asked.air.size_m = { 0.0, 0.0, 0.0 }; // the drum plus its margins: quick to build
+    asked.airBox.size_m = { 0.0, 0.0, 0.0 }; // the drum plus its margins: quick to build
     const Drum drum(asked);
     CHECK_FALSE(drum.batter().singlePrecision());
     CHECK_FALSE(drum.carry().singlePrecision());

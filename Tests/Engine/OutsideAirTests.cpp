@@ -79,9 +79,9 @@ TEST_CASE("outside air: the drum's lowest modes match the air box's within 2 % i
     cfg.cavity.gridShellDepth_m = 0.05;
     DrumConfig box = cfg.lossless();
     box.cavity.model = AirModel::airbox;
-    box.air.walls = AirWalls::absorbing;
-    box.air.size_m = { 1.4, 1.4, 1.4 };
-    box.air.threads = 2;
+    box.airBox.walls = AirWalls::absorbing;
+    box.airBox.size_m = { 1.4, 1.4, 1.4 };
+    box.airBox.threads = 2;
     const test::LowModes air = test::lowModes(box, 1 << 14, { 0.0, 345.0 });
 
     const auto compare = [&](const DrumConfig& model, bool shouldMatch) {
@@ -119,7 +119,7 @@ TEST_CASE("outside air: a config that enables it builds its channels, and the ai
     CHECK(cfg.kineticReserve(false) > test::wholeDrum().kineticReserve(false));
     DrumConfig box = cfg;
     box.cavity.model = AirModel::airbox;
-    box.air.size_m = { 0.48, 0.48, 0.4 };
+    box.airBox.size_m = { 0.48, 0.48, 0.4 };
     Drum inBox(box);
     CHECK_FALSE(inBox.outsideAir().active());
     DrumConfig bad = cfg;

@@ -2,6 +2,7 @@
 // off, on the cavity path and in the air box, and phases that add up to no more than the time
 // around the steps. Nothing here depends on the machine's speed.
 
+#include "Report.h"
 #include "TestDrums.h"
 
 #include <catch2/catch.hpp>
@@ -22,7 +23,7 @@ DrumConfig inSmallAirBox()
 {
     DrumConfig c = test::wholeDrum();
     c.cavity.model = AirModel::airbox;
-    c.air.size_m = { 0.48, 0.48, 0.4 };
+    c.airBox.size_m = { 0.48, 0.48, 0.4 };
     return c;
 }
 
@@ -38,7 +39,7 @@ std::vector<double> play(Drum& drum, int steps)
             drum.playNote(38, n == 0 ? 127 : 90);
         out.push_back(drum.step());
         const auto& s = drum.lastSignals();
-        out.insert(out.end(), { s.top_Pa, s.bottom_Pa, s.far_Pa, drum.energy().total(), drum.energy().balance() });
+        out.insert(out.end(), { s.top_Pa, s.bottom_Pa, s.room_Pa, drum.energy().total(), drum.energy().balance() });
         for (int i = 0; i < drum.numAirMics(); ++i)
             out.push_back(drum.airMicPressure(i));
     }
@@ -112,7 +113,7 @@ TEST_CASE("the step profile's phases are never negative and add up to no more th
     CHECK(p.total() <= wall + 1e-6); // the phases lie between the clock reads around the loop
     CHECK(p[StepPhase::energy] > 0.0);
     CHECK(p[StepPhase::batterFree] > 0.0);
-    std::printf("step profile, %s: phases %.4g s of %.4g s around the steps (%.1f%%)\n", airBox ? "air box" : "cavity",
+    snaresim::test::reportf("step profile, %s: phases %.4g s of %.4g s around the steps (%.1f%%)\n", airBox ? "air box" : "cavity",
                 p.total(), wall, 100.0 * p.total() / wall);
 
     // Off: the profile stays as it was; reset: empty, the path kept.

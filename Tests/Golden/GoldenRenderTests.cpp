@@ -11,6 +11,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "Report.h"
 #include "DrumConfig.h"
 #include "Parameters.h"
 #include "PluginProcessor.h"
@@ -77,14 +78,14 @@ std::vector<Golden> goldenList()
     return list;
 }
 
+// A render that differs is printed (the test fails); one that is identical only while reporting.
 void report(const std::string& name, const Difference& d)
 {
-    std::cout << "golden " << name << ": ";
     if (d.differing == 0)
-        std::cout << "identical\n";
+        snaresim::test::report() << "golden " << name << ": identical\n";
     else
-        std::cout << d.differing << " samples differ, largest by " << d.maxAbs << ", difference " << d.dbBelowSignal
-                  << " dB below the signal\n";
+        std::cout << "golden " << name << ": " << d.differing << " samples differ, largest by " << d.maxAbs << ", difference "
+                  << d.dbBelowSignal << " dB below the signal\n";
 }
 
 void writeFloatWav(const fs::path& file, const std::vector<float>& samples, double sampleRate)

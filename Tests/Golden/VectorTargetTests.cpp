@@ -11,6 +11,7 @@
 // own choice of maths, as a user's machine runs it. A target the processor lacks falls back to
 // the widest it has (stated in the output), which is then the one held to the bounds.
 
+#include "Report.h"
 #include "GoldenSupport.h"
 #include "RendererTestSupport.h"
 #include "StrikeFeatures.h"
@@ -136,7 +137,7 @@ TEST_CASE("each vector target plays the drum without snares within round-off of 
         const auto wide = render(dir, doubleHeads, environmentOf(target));
         const double dbSingle = golden::compare(ref.channelSamples, single.channels).dbBelowSignal;
         const double dbDouble = golden::compare(doubleRef.channels, wide.channels).dbBelowSignal;
-        std::cout << "vector target " << target << " (ran " << single.target << "), snares off: float batter " << dbSingle
+        snaresim::test::report() << "vector target " << target << " (ran " << single.target << "), snares off: float batter " << dbSingle
                   << " dB below the signal, double batter " << dbDouble << " dB\n";
         INFO("target " << target << " ran as " << single.target << ": " << dbSingle << " / " << dbDouble << " dB below the signal");
         CHECK(dbSingle > kLinearBoundFloat_dB);
@@ -155,7 +156,7 @@ TEST_CASE("each vector target plays the snare drum's strikes within their just-n
     for (const std::string target : { "avx2", "avx512" })
     {
         const auto m = meanFeatures(dir, environmentOf(target), draws);
-        std::cout << "vector target " << target << ": " << describe(m) << "; baseline " << describe(baseline) << "\n";
+        snaresim::test::report() << "vector target " << target << ": " << describe(m) << "; baseline " << describe(baseline) << "\n";
         INFO(target << ": " << describe(m));
         CHECK(alike(m, baseline));
     }

@@ -76,7 +76,7 @@ inline Recording record(const DrumConfig& cfg, int samples)
         const MicSignals& s = drum.lastSignals();
         r.drum[0].push_back(s.top_Pa);
         r.drum[1].push_back(s.bottom_Pa);
-        r.drum[2].push_back(s.far_Pa);
+        r.drum[2].push_back(s.room_Pa);
         for (int m = 0; m < 3; ++m)
         {
             r.model[(size_t) m].push_back(drum.microphones().pressure((PressureMicrophones::Position) m));
@@ -118,30 +118,34 @@ inline DrumConfig onGridsOf(DrumConfig cfg, const DrumConfig& reference)
 inline DrumConfig inBox(DrumConfig cfg)
 {
     cfg.cavity.model = AirModel::airbox;
-    cfg.air.walls = AirWalls::absorbing;
-    cfg.air.size_m = { 1.3, 1.3, 1.3 };
-    cfg.air.threads = 2;
+    cfg.airBox.walls = AirWalls::absorbing;
+    cfg.airBox.size_m = { 1.3, 1.3, 1.3 };
+    cfg.airBox.threads = 2;
     return cfg;
 }
 
 inline const char* const kNames[3] = { "top", "bottom", "room" };
 
-// Largest |level difference| over the bands up to upTo_Hz (all by default), each band printed.
+// Largest |level difference| over the bands up to upTo_Hz (all by default), each band printed
+// to out (none: nullptr).
 inline double worstDifference(const char* what, const std::array<std::vector<double>, 3>& a, const std::array<std::vector<double>, 3>& b,
-                              double fs, double upTo_Hz = kOctaves.back())
+                              double fs, double upTo_Hz = kOctaves.back(), std::FILE* out = nullptr)
 {
     double worst = 0.0;
     for (int m = 0; m < 3; ++m)
     {
         const Levels la = octaveLevels(a[(size_t) m], fs), lb = octaveLevels(b[(size_t) m], fs);
-        std::printf("%s, %s mic, dB against the air box:", what, kNames[m]);
+        if (out)
+            std::fprintf(out, "%s, %s mic, dB against the air box:", what, kNames[m]);
         for (size_t i = 0; i < la.size(); ++i)
         {
-            std::printf(" %+.1f", la[i] - lb[i]);
+            if (out)
+                std::fprintf(out, " %+.1f", la[i] - lb[i]);
             if (kOctaves[i] <= upTo_Hz)
                 worst = std::max(worst, std::abs(la[i] - lb[i]));
         }
-        std::printf("\n");
+        if (out)
+            std::fprintf(out, "\n");
     }
     return worst;
 }

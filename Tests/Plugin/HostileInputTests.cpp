@@ -4,6 +4,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "Report.h"
 #include "ProcessorTestHelpers.h"
 #include "PluginState.h"
 
@@ -207,7 +208,7 @@ TEST_CASE ("hostile states: random bytes, truncated, version 1, another plug-in'
     CHECK (r.allFinite);
     CHECK (r.peak > 0.0f);
 
-    std::cout << "hostile states: " << tried << " tried (" << ignored << " not SnareSim states, all ignored; "
+    snaresim::test::report() << "hostile states: " << tried << " tried (" << ignored << " not SnareSim states, all ignored; "
               << good.getSize() << " truncations of a good state, " << truncatedRead << " of them read in part (defaults for the rest of each), the others ignored; "
               << partial << " partly unreadable SnareSim states, all restored in range; one empty tree restored to defaults)\n";
 }
@@ -324,7 +325,7 @@ TEST_CASE ("MIDI floods: 1000 notes in a block, every note and velocity, running
     CHECK (peak < 128.0f); // loose: a flood of fortissimo strikes on the default mix stays within 42 dB of full scale
     CHECK (proc.getNonFiniteResets() == 0);
 
-    std::cout << "MIDI floods: " << events << " events in " << blocks << " blocks of 64 samples at 48 kHz; worst block "
+    snaresim::test::report() << "MIDI floods: " << events << " events in " << blocks << " blocks of 64 samples at 48 kHz; worst block "
               << worstBlock_ms << " ms (budget 1.333 ms), peak " << peak << ", non-finite resets "
               << proc.getNonFiniteResets() << "\n";
 }

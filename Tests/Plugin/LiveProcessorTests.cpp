@@ -4,6 +4,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "Report.h"
 #include "ProcessorTestHelpers.h"
 #include "Drum.h"
 #include "PluginState.h"
@@ -832,7 +833,7 @@ TEST_CASE ("in real time the air box plays only where it keeps up: here the cavi
 
     const auto verdict = waitForVerdict (proc, blockSize);
     const double waited = std::chrono::duration<double> (std::chrono::steady_clock::now() - asked).count();
-    std::cout << "air box at 48 kHz, blocks of " << blockSize << ": " << verdict.figures.load << " s of compute per s of audio, slowest block "
+    snaresim::test::report() << "air box at 48 kHz, blocks of " << blockSize << ": " << verdict.figures.load << " s of compute per s of audio, slowest block "
               << verdict.figures.worstBlockShare << " of its duration, over " << verdict.figures.audioSeconds * 1000.0
               << " ms of audio" << (verdict.figures.cutShort ? " (cut short)" : "") << "; verdict after " << waited << " s\n";
     // On this machine the air box needs several times real time (BENCHMARKS.md, "The drum in the air box").

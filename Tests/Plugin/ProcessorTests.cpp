@@ -2,6 +2,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "Report.h"
 #include "PluginProcessor.h"
 #include "PluginState.h"
 #include "ProcessorTestHelpers.h"
@@ -318,7 +319,7 @@ TEST_CASE ("a state restores every parameter exactly, whatever values a host set
         }
     }
 
-    std::cout << "state round trips over random host values: 100 rounds, " << compared
+    snaresim::test::report() << "state round trips over random host values: 100 rounds, " << compared
               << " values compared, largest normalised difference " << worstError << "\n";
 }
 

@@ -2,6 +2,7 @@
 // stderr starting with "snaresim-render: error: ", and leaves nothing in the target
 // directory (no output, no temporary).
 
+#include "Report.h"
 #include "RendererTestSupport.h"
 
 #include "Parameters.h"
@@ -288,5 +289,5 @@ TEST_CASE("interrupted: SIGINT, SIGTERM or SIGHUP during a render leaves no outp
         CHECK(readText(target) == "an older render");
         ++tried;
     }
-    std::cout << "interrupted renders: " << tried << " signals (SIGINT, SIGTERM, SIGHUP), exit 128 + N, nothing left behind\n";
+    snaresim::test::report() << "interrupted renders: " << tried << " signals (SIGINT, SIGTERM, SIGHUP), exit 128 + N, nothing left behind\n";
 }

@@ -2,6 +2,7 @@
 // rendered with a progress line when stderr is a terminal (and only then, and not with --json),
 // in memory that grows with neither the number of notes beyond their list nor the length.
 
+#include "Report.h"
 #include "RendererTestSupport.h"
 
 #include <catch2/catch.hpp>
@@ -179,7 +180,7 @@ TEST_CASE("a MIDI file of 100 000 notes renders with a progress line on a termin
     // copy of the file's events (juce::MidiFile: about 220 bytes a note): 400 bytes a note at most.
     CHECK(fewRss - shortRss < 2 * 1024);
     CHECK(manyRss - fewRss < 100000 * 400 / 1024);
-    std::cout << "100 000-note MIDI file: 400 s of audio at 16 kHz rendered with a progress line on a terminal; peak RSS "
+    snaresim::test::report() << "100 000-note MIDI file: 400 s of audio at 16 kHz rendered with a progress line on a terminal; peak RSS "
               << manyRss / 1024 << " MB (1 000 notes for as long: " << fewRss / 1024 << " MB; a tenth as long: "
               << shortRss / 1024 << " MB)\n";
 }
