@@ -39,8 +39,7 @@ double secondsPerStep(const std::function<void()>& step, int steps, int repeats)
 
 void report(const char* what, double points, double perStep)
 {
-    std::printf("  %-58s %7.2f us/step  %8.3g updates/s  %6.3f s per s of audio\n", what, 1e6 * perStep, points / perStep,
-                perStep * fs);
+    std::printf("  %-58s %7.2f us/step  %8.3g updates/s  %6.3f s per s of audio\n", what, 1e6 * perStep, points / perStep, perStep * fs);
 }
 
 void reportSpeed(const AirSpeed& a, const char* air)
@@ -109,7 +108,8 @@ void benchCube(int threads)
         },
         steps, repeats);
     inEmbed /= steps * repeats;
-    std::printf("  batter alone (%d nodes): %.3f us/step; air (no shell) + batter + HeadEmbedding::step: %.3f us/step (%.3f in the embedding), %.3f s per s of audio\n",
+    std::printf("  batter alone (%d nodes): %.3f us/step; air (no shell) + batter + HeadEmbedding::step: %.3f us/step (%.3f in the "
+                "embedding), %.3f s per s of audio\n",
                 head.grid().numInterior(), 1e6 * headAlone, 1e6 * coupled, 1e6 * inEmbed, coupled * fs);
     if (! std::isfinite(box.energy()))
         std::printf("  the air box's energy is not finite\n");

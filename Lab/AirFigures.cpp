@@ -62,7 +62,7 @@ void writeWav(const std::string& path, const std::vector<double>& x, double samp
     }
     const auto put32 = [f](std::uint32_t v) { std::fwrite(&v, 4, 1, f); };
     const auto put16 = [f](std::uint16_t v) { std::fwrite(&v, 2, 1, f); };
-    const auto bytes = (std::uint32_t) (4 * x.size());
+    const auto bytes = (std::uint32_t)(4 * x.size());
     std::fwrite("RIFF", 1, 4, f);
     put32(36 + bytes);
     std::fwrite("WAVEfmt ", 1, 8, f);
@@ -70,7 +70,7 @@ void writeWav(const std::string& path, const std::vector<double>& x, double samp
     put16(3); // IEEE float
     put16(1);
     put32((std::uint32_t) sampleRate_Hz);
-    put32((std::uint32_t) (4 * sampleRate_Hz));
+    put32((std::uint32_t)(4 * sampleRate_Hz));
     put16(4);
     put16(32);
     std::fwrite("data", 1, 4, f);
@@ -110,7 +110,8 @@ int band(const std::string& dir, double seconds, double side)
             const Fit& f = fits[b];
             test::BandDecay& d = decay[run][b];
             d = test::bandDecay(F, 0.05, f.t1, f.lo * fs, f.hi * fs, run == 0 ? 0.0 : decay[0][b].peak_Hz);
-            std::printf("sigma_a = %-6g m, band at %s: peak %.0f Hz (%.4f Fs), level %.1f dB at 50 ms, decay %.1f dB/s over 50-%.0f ms (T60 %.2f s)\n",
+            std::printf("sigma_a = %-6g m, band at %s: peak %.0f Hz (%.4f Fs), level %.1f dB at 50 ms, decay %.1f dB/s over 50-%.0f ms "
+                        "(T60 %.2f s)\n",
                         setup.sigma_m, f.what, d.peak_Hz, d.peak_Hz / fs, d.level_dB, d.rate_dB_per_s, 1e3 * f.t1, 60.0 / d.rate_dB_per_s);
         }
     }
@@ -250,7 +251,8 @@ int pairs()
         {
             const test::SweptVolumes v = test::sweptVolumes(c.cfg, steps);
             const bool inBox = c.cfg.cavity.model == AirModel::airbox;
-            const test::ModePair p = test::measuredPairs(v, inBox && reference.antiPhase > 0.0 ? test::ModePair { 0.0, reference.antiPhase } : test::ModePair {});
+            const test::ModePair p = test::measuredPairs(v, inBox && reference.antiPhase > 0.0 ? test::ModePair { 0.0, reference.antiPhase }
+                                                                                               : test::ModePair {});
             if (inBox && reference.antiPhase == 0.0)
                 reference = p;
             const double ri = test::modeDecay_dB_per_s(v, +1.0, p.inPhase), ra = test::modeDecay_dB_per_s(v, -1.0, p.antiPhase);
@@ -316,7 +318,9 @@ void printAllPeaks(const test::HeadMoments& m)
 
 void printModes(const char* name, const test::LowModes& m)
 {
-    const auto one = [](const char* what, const test::Mode& x) { std::printf(" %s %7.2f Hz %7.1f dB/s;", what, x.frequency_Hz, x.decay_dB_per_s); };
+    const auto one = [](const char* what, const test::Mode& x) {
+        std::printf(" %s %7.2f Hz %7.1f dB/s;", what, x.frequency_Hz, x.decay_dB_per_s);
+    };
     std::printf("%-34s", name);
     one("in phase", m.inPhase);
     one("anti-phase", m.antiPhase);
@@ -347,7 +351,7 @@ int modesModel(char** v)
     DrumConfig cfg = modesDrum(AirModel::cavity, true);
     RadiationChannelSpec* ch[4] = { &cfg.outside.monopole, &cfg.outside.dipole, &cfg.outside.tiltSum, &cfg.outside.tiltDiff };
     for (int i = 0; i < 4; ++i)
-            *ch[i] = { std::atof(v[2 * i]), std::atof(v[2 * i + 1]) };
+        *ch[i] = { std::atof(v[2 * i]), std::atof(v[2 * i + 1]) };
     if (v[8] && v[9])
         cfg.cavity.modesUpTo_Hz = std::atof(v[9]);
     printModes("model", test::lowModes(cfg, 1 << 15, { 0.0, v[8] ? std::atof(v[8]) : 0.0 }));
@@ -416,8 +420,8 @@ int s52()
     for (const Case& c : cases)
     {
         const test::SnareTimes t = test::section52(c.cfg);
-        std::printf("%-46s %9.2f ms %12.3f %7.2f ms %7.2f ms %7.2f ms %7.2f ms %.3f mm\n", c.name, t.swingLowest_ms, t.swingLowest_mm, t.left_ms,
-                    t.back_ms, t.clean_ms, t.carryLowest_ms, t.carryLowest_mm);
+        std::printf("%-46s %9.2f ms %12.3f %7.2f ms %7.2f ms %7.2f ms %7.2f ms %.3f mm\n", c.name, t.swingLowest_ms, t.swingLowest_mm,
+                    t.left_ms, t.back_ms, t.clean_ms, t.carryLowest_ms, t.carryLowest_mm);
         std::fflush(stdout);
     }
     return 0;
@@ -566,6 +570,8 @@ int main(int argc, char** argv)
         return headModes(argv + 2, argc - 2);
     if (what == "band" && argc >= 3)
         return band(argv[2], argc > 3 ? std::atof(argv[3]) : 1.0, argc > 4 ? std::atof(argv[4]) : 0.6);
-    std::fprintf(stderr, "usage: airbox_figures band OUT_DIR [SECONDS] [BOX_SIDE_M] | pairs | modes [BOX_SIDE_M] [STEPS] | modes-model Mm Rm Md Rd Ms Rs Mt Rt ANTI_NEAR [MODES_UP_TO_HZ] | whole-drum [STIFFNESS MASS_KG] [same-grids] [coarser=F] [no-near-field] [modes=HZ] | head-modes [the same options] | s52\n");
+    std::fprintf(stderr, "usage: airbox_figures band OUT_DIR [SECONDS] [BOX_SIDE_M] | pairs | modes [BOX_SIDE_M] [STEPS] | modes-model Mm "
+                         "Rm Md Rd Ms Rs Mt Rt ANTI_NEAR [MODES_UP_TO_HZ] | whole-drum [STIFFNESS MASS_KG] [same-grids] [coarser=F] "
+                         "[no-near-field] [modes=HZ] | head-modes [the same options] | s52\n");
     return 2;
 }

@@ -56,8 +56,8 @@ int cavityModes()
             cfg.outside.enabled = cfg.outside.nearField = true;
             cfg.cavity.modesUpTo_Hz = upTo;
             const double s = timeDrum(cfg, 2.0, true).perAudioSecond;
-            std::printf("  cavity modes to %4.0f Hz (%3d modes): %.3f (%.2fx real time)\n", upTo, (int) CavityModes::below(cfg.cavity, upTo, cfg.batter.radius_m).size(), s,
-                        1.0 / s);
+            std::printf("  cavity modes to %4.0f Hz (%3d modes): %.3f (%.2fx real time)\n", upTo,
+                        (int) CavityModes::below(cfg.cavity, upTo, cfg.batter.radius_m).size(), s, 1.0 / s);
         }
     return 0;
 }
@@ -78,8 +78,7 @@ int main(int argc, char** argv)
 
     DrumConfig cavity = cfg;
     cavity.cavity.model = AirModel::cavity;
-    std::printf("whole default drum, 44.1 kHz, %.1f s after a fortissimo strike; seconds of compute per second of audio:\n",
-                seconds);
+    std::printf("whole default drum, 44.1 kHz, %.1f s after a fortissimo strike; seconds of compute per second of audio:\n", seconds);
     std::printf("  cavity model:                 %.3f\n", timeDrum(cavity, seconds, true).perAudioSecond);
 
     DrumConfig box = cfg;
@@ -97,12 +96,14 @@ int main(int argc, char** argv)
         box.airBox.threads = threads;
         const Run struck = timeDrum(box, seconds, true);
         const double quiet = timeDrum(box, seconds, false).perAudioSecond;
-        std::printf("  air box, %d thread%s: %.3f struck (contact trials per head and step: mean %.3f, most %d); %.3f unstruck (air, heads, embeddings)\n",
+        std::printf("  air box, %d thread%s: %.3f struck (contact trials per head and step: mean %.3f, most %d); %.3f unstruck (air, "
+                    "heads, embeddings)\n",
                     threads, threads > 1 ? "s" : "", struck.perAudioSecond, struck.meanTrials, struck.maxTrials, quiet);
         DrumConfig newton = box;
         newton.snares.scheme = CollisionScheme::newton;
         const Run n = timeDrum(newton, seconds, true);
-        std::printf("      the same with the Newton snare solve: %.3f struck (trials mean %.3f, most %d)\n", n.perAudioSecond, n.meanTrials, n.maxTrials);
+        std::printf("      the same with the Newton snare solve: %.3f struck (trials mean %.3f, most %d)\n", n.perAudioSecond, n.meanTrials,
+                    n.maxTrials);
     }
     return 0;
 }

@@ -11,19 +11,19 @@ namespace snaresim
 
 enum class ArticulationAction
 {
-    strike,     // a mallet strike at a point
-    snaresOff,  // throw the snares off the carry head
-    snaresOn    // put them back
+    strike,    // a mallet strike at a point
+    snaresOff, // throw the snares off the carry head
+    snaresOn   // put them back
 };
 
 struct Articulation
 {
-    int note;                   // MIDI note number
+    int note; // MIDI note number
     std::string_view name;
     ArticulationAction action;
-    double radius_frac;         // strike point: distance from the centre / R; < 0 means the strike_position control
-    double angle_rad;           // and its angle from the snares' direction
-    double speedScale;          // multiplies the velocity curve's speed
+    double radius_frac; // strike point: distance from the centre / R; < 0 means the strike_position control
+    double angle_rad;   // and its angle from the snares' direction
+    double speedScale;  // multiplies the velocity curve's speed
 };
 
 std::span<const Articulation> articulations();

@@ -62,15 +62,15 @@ std::vector<Mallet> makeMallets(const DrumConfig& c, const Membrane& batter, dou
 // coupling that stores energy adds its term here. (CavityCoupling stores none: no term lists it.)
 auto Drum::energyTerms() const
 {
-    return std::tuple { EnergyTerm("batter", batterHead),                          // eq. (35)
-                        EnergyTerm("carry", carryHead),                            // eq. (35)
-                        EnergyTerm("mallets", mallets, malletCoupling),            // eq. (37)
-                        EnergyTerm("snares", wires, snareCoupling).when(engaged),  // eq. (38)
-                        EnergyTerm("cavity", cavityAir),                                 // (K/2) dV^{n+1} dV^n
-                        EnergyTerm("cavity_modes", modes).listedIf(modes.active()), // CavityModes.h
-                        EnergyTerm("outside", outside).listedIf(outside.active()), // OutsideAir.h
+    return std::tuple { EnergyTerm("batter", batterHead),                                 // eq. (35)
+                        EnergyTerm("carry", carryHead),                                   // eq. (35)
+                        EnergyTerm("mallets", mallets, malletCoupling),                   // eq. (37)
+                        EnergyTerm("snares", wires, snareCoupling).when(engaged),         // eq. (38)
+                        EnergyTerm("cavity", cavityAir),                                  // (K/2) dV^{n+1} dV^n
+                        EnergyTerm("cavity_modes", modes).listedIf(modes.active()),       // CavityModes.h
+                        EnergyTerm("outside", outside).listedIf(outside.active()),        // OutsideAir.h
                         EnergyTerm("near_field", nearField).listedIf(nearField.active()), // NearFieldAir.h
-                        EnergyTerm("airbox", boxAir).listedIf(boxAir.active()) };        // eq. (36)
+                        EnergyTerm("airbox", boxAir).listedIf(boxAir.active()) };         // eq. (36)
 }
 
 Drum::Drum(const DrumConfig& config)
@@ -82,8 +82,7 @@ Drum::Drum(const DrumConfig& config)
       outsideCoupling(batterHead, carryHead, outside), modes(cfg.cavity, cfg.cavityModesUpTo_Hz(), cfg.batter.radius_m, k),
       modesCoupling(batterHead, carryHead, modes, cfg.cavity.modeCellSize_m), nearField(cfg.nearFieldSpec(), k),
       nearFieldCoupling(batterHead, carryHead, nearField, cfg.cavity.modeCellSize_m, cfg.outside.nearFieldCellSize_m),
-      pressureMics(cfg.mics, cfg.cavity, cfg.sampleRate_Hz, batterHead, carryHead), toHost(cfg.outputFactor()),
-      engaged(cfg.snares.engaged)
+      pressureMics(cfg.mics, cfg.cavity, cfg.sampleRate_Hz, batterHead, carryHead), toHost(cfg.outputFactor()), engaged(cfg.snares.engaged)
 {
     if (cfg.cavity.model == AirModel::airbox)
     {
@@ -190,15 +189,15 @@ void Drum::applyLive(const DrumConfig& next) noexcept
     for (auto& m : mallets)
         m.setSpec(n.mallet); // a mallet in flight keeps its position; its patch changes at the next strike
     auto moved = [](const AirPoint& a, const AirPoint& b) { return a.x_m != b.x_m || a.y_m != b.y_m || a.z_m != b.z_m; };
-    if (moved(n.mics.top, cfg.mics.top) || moved(n.mics.bottom, cfg.mics.bottom) || moved(n.mics.room, cfg.mics.room)
-        || n.cavity.shellDepth_m != cfg.cavity.shellDepth_m)
+    if (moved(n.mics.top, cfg.mics.top) || moved(n.mics.bottom, cfg.mics.bottom) || moved(n.mics.room, cfg.mics.room) ||
+        n.cavity.shellDepth_m != cfg.cavity.shellDepth_m)
     {
         pressureMics.setPositions(n.mics, n.cavity.shellDepth_m); // a delay beyond the lines' length is held at it
         if (boxAir.active())
             placeAirMics(n);
     }
     const HeadPrecision heads[2] = { cfg.batter.precision, cfg.carry.precision }; // the grids' own
-    const OutsideAirSpec outsideSpec = cfg.outside; // the model's own, like the grids
+    const OutsideAirSpec outsideSpec = cfg.outside;                               // the model's own, like the grids
     const double modesUpTo = cfg.cavity.modesUpTo_Hz, modeCells = cfg.cavity.modeCellSize_m;
     cfg = n;
     cfg.cavity.modesUpTo_Hz = modesUpTo;
@@ -300,15 +299,15 @@ template <class Lap>
     }
     batterHead.computeFree(cavityCoupling.pressureOnBatter() + b.p0, b.px, b.py); // eq. (22) without the contact force
     lap(StepPhase::batterFree);
-    carryHead.computeFree(cavityCoupling.pressureOnCarry() + c.p0, c.px, c.py);   // eq. (23) without snare and end forces
+    carryHead.computeFree(cavityCoupling.pressureOnCarry() + c.p0, c.px, c.py); // eq. (23) without snare and end forces
     lap(StepPhase::carryFree);
     if (engaged)
     {
-        wires.computeFree();                                // eq. (28) without collision and end forces
+        wires.computeFree(); // eq. (28) without collision and end forces
         lap(StepPhase::wiresFree);
     }
     for (auto& ml : mallets)
-        ml.computeFree();                                   // eq. (43) without the contact force
+        ml.computeFree(); // eq. (43) without the contact force
     lap(StepPhase::malletsFree);
 
     // 2. The couplings: each solves for its forces and adds them to the free updates.
@@ -370,10 +369,10 @@ template <class Lap>
         malletsSaved[i] = mallets[i].zNext;
     ContactSolveResult mallet;
     const auto onBatter = boxAir.solveBatter([&] { mallet = malletCoupling.step(); }, // eq. (44)-(45)
-                                          [&] {
-                                              for (size_t i = 0; i < mallets.size(); ++i)
-                                                  mallets[i].zNext = malletsSaved[i];
-                                          });
+                                             [&] {
+                                                 for (size_t i = 0; i < mallets.size(); ++i)
+                                                     mallets[i].zNext = malletsSaved[i];
+                                             });
     lap(StepPhase::batterJoint);
     JointSolveResult onCarry;
     if (engaged)
@@ -382,10 +381,10 @@ template <class Lap>
         snareCoupling.saveTrial();
         SnareSolveResult snare;
         onCarry = boxAir.solveCarry([&] { snare = snareCoupling.step(); }, // eq. (48)-(50)
-                                 [&] {
-                                     wires.uNext = wiresSaved;
-                                     snareCoupling.restoreTrial();
-                                 });
+                                    [&] {
+                                        wires.uNext = wiresSaved;
+                                        snareCoupling.restoreTrial();
+                                    });
         noteSolves(mallet, &snare);
     }
     else
@@ -468,8 +467,8 @@ double Drum::stepWith(Lap& lap)
     signals.bottom_Pa = boxMics ? boxAir.micPressure(1) : pressureMics.pressure(PressureMicrophones::bottom);
     signals.room_Pa = boxMics ? boxAir.micPressure(2) : pressureMics.pressure(PressureMicrophones::room);
     const auto& m = cfg.mics;
-    signals.mix = cfg.outputGain
-                * (m.mixTop * m.topGain * signals.top_Pa + m.mixBottom * m.bottomGain * signals.bottom_Pa + m.mixRoom * m.roomGain * signals.room_Pa);
+    signals.mix = cfg.outputGain * (m.mixTop * m.topGain * signals.top_Pa + m.mixBottom * m.bottomGain * signals.bottom_Pa +
+                                    m.mixRoom * m.roomGain * signals.room_Pa);
     lap(StepPhase::signals);
 
     ++samplesRendered;

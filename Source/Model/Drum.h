@@ -38,16 +38,16 @@ namespace snaresim
 
 struct SolverStats
 {
-    int lastIterations = 0;     // Newton iterations of the last step that solved a contact
-    int maxIterations = 0;      // since the last resetStats(), mallets and snares
-    int maxSnareIterations = 0; // the snare solve alone (largest over its node groups)
-    long fallbacks = 0;         // steps where a Newton solve missed its cap and fell back
-    int snareContacts = 0;      // snare points touching the carry head after the last step
+    int lastIterations = 0;             // Newton iterations of the last step that solved a contact
+    int maxIterations = 0;              // since the last resetStats(), mallets and snares
+    int maxSnareIterations = 0;         // the snare solve alone (largest over its node groups)
+    long fallbacks = 0;                 // steps where a Newton solve missed its cap and fell back
+    int snareContacts = 0;              // snare points touching the carry head after the last step
     double maxSnarePenetration_m = 0.0; // largest xi since resetStats()
-    int maxAirTrials = 0;       // air box: most contact trials of one head's joint solve (DrumAir.h)
-    long airCapped = 0;         // air box: joint solves stopped at their cap
-    long airTrials = 0;         // air box: contact trials of both heads since resetStats()
-    double maxAirMismatch = 0.0; // air box: largest final mismatch of a joint solve, relative to max |w|
+    int maxAirTrials = 0;               // air box: most contact trials of one head's joint solve (DrumAir.h)
+    long airCapped = 0;                 // air box: joint solves stopped at their cap
+    long airTrials = 0;                 // air box: contact trials of both heads since resetStats()
+    double maxAirMismatch = 0.0;        // air box: largest final mismatch of a joint solve, relative to max |w|
 };
 
 enum class Mic
@@ -65,7 +65,7 @@ struct MicSignals
     double top_Pa = 0.0;
     double bottom_Pa = 0.0;
     double room_Pa = 0.0;
-    double mix = 0.0;           // the output sample
+    double mix = 0.0; // the output sample
 };
 
 class Drum
@@ -163,11 +163,11 @@ private:
     void strikeAs(const Articulation& a, double speed_m_per_s);
     auto energyTerms() const; // the ledger's terms and their owners (Drum.cpp)
     void updateEnergy();
-    double simulate();             // one step of the simulation
+    double simulate(); // one step of the simulation
     template <class Lap>
-    double stepWith(Lap& lap);     // simulate(), lap(phase) after each phase (Drum.cpp)
+    double stepWith(Lap& lap); // simulate(), lap(phase) after each phase (Drum.cpp)
     template <class Lap>
-    void stepCouplings(Lap& lap);      // steps 1-2 of step() (free updates, couplings)
+    void stepCouplings(Lap& lap); // steps 1-2 of step() (free updates, couplings)
     template <class Lap>
     void stepCouplingsInAir(Lap& lap); // the same with the air box
     void noteSolves(const ContactSolveResult& mallet, const SnareSolveResult* snare);
@@ -179,25 +179,25 @@ private:
     DrumConfig cfg;
     double k;
     // Components and the couplings between them (each coupling after what it couples).
-    Cavity cavityAir;            // component: the enclosed air as one pressure
-    Membrane batterHead, carryHead; // components
-    SnareWires wires;            // component
-    SnareContact snareCoupling;  // coupling: wires - carry head
-    std::vector<Mallet> mallets; // components; never resized after construction
-    MalletContact malletCoupling; // coupling: mallets - batter
-    CavityCoupling cavityCoupling; // coupling: heads - cavity
-    OutsideAir outside;          // component: the outside air's channels; inactive without
-    OutsideAirCoupling outsideCoupling; // coupling: heads - outside air
-    CavityModes modes;           // component: the enclosed air's own modes; inactive without
-    CavityModesCoupling modesCoupling; // coupling: heads - cavity modes
-    NearFieldAir nearField;      // component: the near field's mass on the heads' higher modes; inactive without
+    Cavity cavityAir;                    // component: the enclosed air as one pressure
+    Membrane batterHead, carryHead;      // components
+    SnareWires wires;                    // component
+    SnareContact snareCoupling;          // coupling: wires - carry head
+    std::vector<Mallet> mallets;         // components; never resized after construction
+    MalletContact malletCoupling;        // coupling: mallets - batter
+    CavityCoupling cavityCoupling;       // coupling: heads - cavity
+    OutsideAir outside;                  // component: the outside air's channels; inactive without
+    OutsideAirCoupling outsideCoupling;  // coupling: heads - outside air
+    CavityModes modes;                   // component: the enclosed air's own modes; inactive without
+    CavityModesCoupling modesCoupling;   // coupling: heads - cavity modes
+    NearFieldAir nearField;              // component: the near field's mass on the heads' higher modes; inactive without
     NearFieldCoupling nearFieldCoupling; // coupling: heads - near field
-    DrumAir boxAir;              // component (the air box) with its couplings to the heads; inactive without
-    std::vector<double> wiresSaved; // air box: the wires' free u^{n+1}, for the joint solve's trials
+    DrumAir boxAir;                      // component (the air box) with its couplings to the heads; inactive without
+    std::vector<double> wiresSaved;      // air box: the wires' free u^{n+1}, for the joint solve's trials
     std::array<double, MalletContact::maxMallets> malletsSaved {};
 
     PressureMicrophones pressureMics; // the microphones: a listener, no energy, no force
-    HostRateInterpolator toHost;   // the signals at the host's rate
+    HostRateInterpolator toHost;      // the signals at the host's rate
     int hostPhase = 0, lastPhase = 0; // of the next and the last host sample, 0 .. factor - 1
     EnergyLedger ledger;
     int malletsTerm = -1, snaresTerm = -1; // the ledger terms a strike and the snares switch change

@@ -45,12 +45,13 @@ void validateMembrane(const MembraneSpec& m, double k, double reserve)
             "grid coarseness must be >= 1: a grid finer than the stability bound (eq. 39) is unstable", m.gridCoarseness);
     require(m.gridTension_N_per_m <= 0.0 || m.gridTension_N_per_m >= m.tension_N_per_m,
             "the grid's design tension must not be below the tension", m.gridTension_N_per_m);
-    require(m.gridSigma1_m2_per_s < 0.0 || m.gridSigma1_m2_per_s >= m.sigma1_m2_per_s,
-            "the grid's design sigma1 must not be below sigma1", m.gridSigma1_m2_per_s);
+    require(m.gridSigma1_m2_per_s < 0.0 || m.gridSigma1_m2_per_s >= m.sigma1_m2_per_s, "the grid's design sigma1 must not be below sigma1",
+            m.gridSigma1_m2_per_s);
     const double h = Membrane::gridSpacing(m, k, reserve);
     const double pointsPerRadius = m.radius_m / h;
     require(pointsPerRadius >= 4.0,
-            "the head grid would have fewer than 4 points per radius at this sample rate and coarseness; raise the sample rate or lower the coarseness",
+            "the head grid would have fewer than 4 points per radius at this sample rate and coarseness; raise the sample rate or lower "
+            "the coarseness",
             pointsPerRadius);
     require(pointsPerRadius <= 1500.0, "the head grid would be too large (more than 1500 points per radius)", pointsPerRadius);
 }
@@ -61,8 +62,7 @@ void validateAirBox(const DrumConfig& c)
             (double) a.walls);
     require(std::isfinite(a.sigma_m) && a.sigma_m >= 0.0 && a.sigma_m <= 1e-3, "air box sigma_a must be within 0..1e-3 m", a.sigma_m);
     require(std::isfinite(a.gridCoarseness) && a.gridCoarseness >= 1.0 && a.gridCoarseness <= 10.0,
-            "air box grid coarseness must be within 1..10: a grid finer than the stability bound (eq. 41) is unstable",
-            a.gridCoarseness);
+            "air box grid coarseness must be within 1..10: a grid finer than the stability bound (eq. 41) is unstable", a.gridCoarseness);
     require(a.threads >= 1 && a.threads <= 64, "air box threads must be within 1..64", a.threads);
     require(a.numMics >= 0 && a.numMics <= DrumAirSpec::maxMics, "number of air microphones must be within 0..8", a.numMics);
     require(std::isfinite(a.margin_m) && a.margin_m >= 0.0, "air box margin must be >= 0", a.margin_m);
@@ -80,8 +80,7 @@ void validateAirBox(const DrumConfig& c)
         {
             std::ostringstream msg;
             msg << "the air box does not hold the drum: its " << axis[i] << " side is " << L << " m, but the drum (radius " << R
-                << " m, shell depth " << H << " m) needs at least " << need << " m with two air cells (h_a = " << h
-                << " m) around it";
+                << " m, shell depth " << H << " m) needs at least " << need << " m with two air cells (h_a = " << h << " m) around it";
             throw std::invalid_argument(msg.str());
         }
     }
@@ -107,16 +106,19 @@ void DrumConfig::validate() const
             "sample rate must be within 1000..768000 Hz", sampleRate_Hz);
     const double k = 1.0 / sampleRate_Hz;
     const int factor = outputFactor();
-    require(std::isfinite(outputRate()) && std::abs(outputRate() - factor * sampleRate_Hz) <= 1e-9 * outputRate()
-                && (factor == 1 || ((factor & (factor - 1)) == 0 && factor <= 16 && cavity.model != AirModel::airbox)),
+    require(std::isfinite(outputRate()) && std::abs(outputRate() - factor * sampleRate_Hz) <= 1e-9 * outputRate() &&
+                (factor == 1 || ((factor & (factor - 1)) == 0 && factor <= 16 && cavity.model != AirModel::airbox)),
             "the output rate must be the sample rate times 1, 2, 4, 8 or 16 (1 in the air box)", outputRate());
-    require(cavity.model == AirModel::none || cavity.model == AirModel::cavity || cavity.model == AirModel::airbox,
-            "unknown air model", (double) cavity.model);
+    require(cavity.model == AirModel::none || cavity.model == AirModel::cavity || cavity.model == AirModel::airbox, "unknown air model",
+            (double) cavity.model);
     require(std::isfinite(cavity.shellDepth_m) && cavity.shellDepth_m >= 0.02 && cavity.shellDepth_m <= 1.0,
             "shell depth must be within 0.02..1 m", cavity.shellDepth_m);
-    require(std::isfinite(cavity.gridShellDepth_m) && cavity.gridShellDepth_m >= 0.0, "grid shell depth must be >= 0", cavity.gridShellDepth_m);
-    require(std::isfinite(cavity.airDensity_kg_per_m3) && cavity.airDensity_kg_per_m3 > 0.0, "air density must be positive", cavity.airDensity_kg_per_m3);
-    require(std::isfinite(cavity.soundSpeed_m_per_s) && cavity.soundSpeed_m_per_s > 0.0, "speed of sound must be positive", cavity.soundSpeed_m_per_s);
+    require(std::isfinite(cavity.gridShellDepth_m) && cavity.gridShellDepth_m >= 0.0, "grid shell depth must be >= 0",
+            cavity.gridShellDepth_m);
+    require(std::isfinite(cavity.airDensity_kg_per_m3) && cavity.airDensity_kg_per_m3 > 0.0, "air density must be positive",
+            cavity.airDensity_kg_per_m3);
+    require(std::isfinite(cavity.soundSpeed_m_per_s) && cavity.soundSpeed_m_per_s > 0.0, "speed of sound must be positive",
+            cavity.soundSpeed_m_per_s);
     require(std::abs(carry.radius_m - batter.radius_m) < 1e-12, "both heads must have the same radius", carry.radius_m);
     for (const RadiationChannelSpec* ch : { &outside.monopole, &outside.dipole, &outside.tiltSum, &outside.tiltDiff })
     {
@@ -125,8 +127,8 @@ void DrumConfig::validate() const
     }
     require(std::isfinite(outside.cornerLimit_Hz) && outside.cornerLimit_Hz > 0.0, "the outside air's corner limit must be positive",
             outside.cornerLimit_Hz);
-    require(std::isfinite(outside.reserve) && outside.reserve > 0.0 && outside.reserve <= 0.2, "the outside air's reserve must be within 0..0.2",
-            outside.reserve);
+    require(std::isfinite(outside.reserve) && outside.reserve > 0.0 && outside.reserve <= 0.2,
+            "the outside air's reserve must be within 0..0.2", outside.reserve);
     require(std::isfinite(outside.nearFieldUpTo_per_m) && outside.nearFieldUpTo_per_m >= 0.0 && outside.nearFieldUpTo_per_m <= 300.0,
             "the near field's largest wavenumber must be within 0..300 rad/m", outside.nearFieldUpTo_per_m);
     require(std::isfinite(outside.nearFieldReserve) && outside.nearFieldReserve > 0.0 && outside.nearFieldReserve <= 0.2,
@@ -145,15 +147,18 @@ void DrumConfig::validate() const
     require(snares.count >= 0 && snares.count <= 64, "number of snare wires must be within 0..64", snares.count);
     require(std::isfinite(snares.length_m) && snares.length_m > 0.05, "snare length must be above 0.05 m", snares.length_m);
     require(std::isfinite(snares.spacing_m) && snares.spacing_m >= 0.0, "snare spacing must be >= 0", snares.spacing_m);
-    require(std::isfinite(snares.linearDensity_kg_per_m) && snares.linearDensity_kg_per_m > 0.0, "snare density must be positive", snares.linearDensity_kg_per_m);
+    require(std::isfinite(snares.linearDensity_kg_per_m) && snares.linearDensity_kg_per_m > 0.0, "snare density must be positive",
+            snares.linearDensity_kg_per_m);
     require(std::isfinite(snares.tension_N) && snares.tension_N > 0.0, "snare tension must be positive", snares.tension_N);
-    require(snares.gridTension_N <= 0.0 || snares.gridTension_N >= snares.tension_N, "the snare grid's design tension must not be below the tension", snares.gridTension_N);
+    require(snares.gridTension_N <= 0.0 || snares.gridTension_N >= snares.tension_N,
+            "the snare grid's design tension must not be below the tension", snares.gridTension_N);
     require(std::isfinite(snares.sigma0_per_s) && snares.sigma0_per_s >= 0.0, "snare sigma0 must be >= 0", snares.sigma0_per_s);
     require(std::isfinite(snares.sigma1_m2_per_s) && snares.sigma1_m2_per_s >= 0.0, "snare sigma1 must be >= 0", snares.sigma1_m2_per_s);
     require(std::isfinite(snares.gridCoarseness) && snares.gridCoarseness >= 1.0,
             "snare grid coarseness must be >= 1: a grid finer than the stability bound (eq. 40) is unstable", snares.gridCoarseness);
     require(std::isfinite(snares.stiffness) && snares.stiffness > 0.0, "snare contact stiffness must be positive", snares.stiffness);
-    require(std::isfinite(snares.exponent) && snares.exponent >= 1.0 && snares.exponent <= 4.0, "snare contact exponent must be within 1..4", snares.exponent);
+    require(std::isfinite(snares.exponent) && snares.exponent >= 1.0 && snares.exponent <= 4.0,
+            "snare contact exponent must be within 1..4", snares.exponent);
     if (snares.count > 0)
     {
         const SnareSpec fitted = fittedSnares();
@@ -165,8 +170,8 @@ void DrumConfig::validate() const
     }
     require(std::isfinite(mallet.mass_kg) && mallet.mass_kg > 0.0, "mallet mass must be positive", mallet.mass_kg);
     require(std::isfinite(mallet.stiffness) && mallet.stiffness > 0.0, "mallet stiffness must be positive", mallet.stiffness);
-    require(std::isfinite(mallet.exponent) && mallet.exponent >= 1.0 && mallet.exponent <= 4.0,
-            "mallet exponent alpha must be within 1..4", mallet.exponent);
+    require(std::isfinite(mallet.exponent) && mallet.exponent >= 1.0 && mallet.exponent <= 4.0, "mallet exponent alpha must be within 1..4",
+            mallet.exponent);
     require(std::isfinite(mallet.contactRadius_m) && mallet.contactRadius_m >= 0.0 && mallet.contactRadius_m < 0.5 * batter.radius_m,
             "mallet contact radius must be within 0..R/2", mallet.contactRadius_m);
     require(numMallets >= 1 && numMallets <= 16, "number of mallets must be within 1..16", numMallets);
@@ -279,9 +284,9 @@ double DrumConfig::kineticReserve(bool ofBatter) const
     const MembraneSpec& head = ofBatter ? batter : carry;
     // the two bounds add (the cavity's already doubled for margin, OutsideAir.h's)
     const double air = cavity.model == AirModel::airbox ? 0.0 : OutsideAir::kineticReserve(outside, batter, carry, k, ofBatter);
-    return Cavity::kineticReserve(cavity, head.radius_m, head.density_kg_per_m2, k)
-         + CavityModes::kineticReserve(cavity, cavityModesUpTo_Hz(), head.radius_m, head.density_kg_per_m2, k) + air
-         + NearFieldAir::kineticReserve(nearFieldSpec(), ofBatter);
+    return Cavity::kineticReserve(cavity, head.radius_m, head.density_kg_per_m2, k) +
+           CavityModes::kineticReserve(cavity, cavityModesUpTo_Hz(), head.radius_m, head.density_kg_per_m2, k) + air +
+           NearFieldAir::kineticReserve(nearFieldSpec(), ofBatter);
 }
 
 double DrumConfig::cavityModesUpTo_Hz() const
@@ -311,11 +316,10 @@ DrumConfig mapParametersAt(const ParameterSet& p, double sampleRate_Hz, double c
     c.batter.sigma0_per_s = sigma0;
     c.batter.sigma1_m2_per_s = sigma1;
     c.carry.tension_N_per_m = p.get(ParamId::carryFollows) >= 0.5
-                                ? std::clamp(p.get(ParamId::batterTension) * (spec(ParamId::carryTension).defaultValue
-                                                                              / spec(ParamId::batterTension).defaultValue),
-                                             spec(ParamId::carryTension).minValue,
-                                             spec(ParamId::carryTension).maxValue)
-                                : p.get(ParamId::carryTension);
+                                  ? std::clamp(p.get(ParamId::batterTension) *
+                                                   (spec(ParamId::carryTension).defaultValue / spec(ParamId::batterTension).defaultValue),
+                                               spec(ParamId::carryTension).minValue, spec(ParamId::carryTension).maxValue)
+                                  : p.get(ParamId::carryTension);
     c.carry.sigma0_per_s = sigma0;
     c.carry.sigma1_m2_per_s = sigma1;
     // Grids designed for the largest values the controls allow: moving them changes coefficients only.
@@ -394,7 +398,8 @@ double qualityBandwidth_Hz(double coarseness) noexcept
         const double h = Membrane::gridSpacing(m, k, c.kineticReserve(batter));
         return top(std::sqrt(2.0) * k * std::sqrt(m.gridTension_N_per_m / m.density_kg_per_m2) / h);
     };
-    const double wires = top(k * std::sqrt(c.snares.gridTension_N / c.snares.linearDensity_kg_per_m) / SnareWires::gridSpacing(c.snares, k));
+    const double wires =
+        top(k * std::sqrt(c.snares.gridTension_N / c.snares.linearDensity_kg_per_m) / SnareWires::gridSpacing(c.snares, k));
     return std::min({ head(c.batter, true), head(c.carry, false), wires });
 }
 

@@ -27,10 +27,11 @@ struct DrumConfig
     // The schema's default drum at 48 kHz: mapParameters(ParameterSet {}, 48000).
     DrumConfig();
     // The constants alone, every field a parameter sets at 0: what mapParameters fills in.
-    struct Unmapped {};
+    struct Unmapped
+    {};
     explicit DrumConfig(Unmapped) {}
 
-    double sampleRate_Hz = 48000.0;     // the simulation's rate: the time step k = 1 / rate
+    double sampleRate_Hz = 48000.0; // the simulation's rate: the time step k = 1 / rate
     // The host's rate, a power-of-two multiple of sampleRate_Hz (HostRateInterpolator.h);
     // 0: the same.
     double outputRate_Hz = 0.0;
@@ -40,14 +41,14 @@ struct DrumConfig
     MembraneSpec carry { .radius_m = 0.1778, .density_kg_per_m2 = 0.106 }; // 3 mil PET
     SnareSpec snares;
     CavitySpec cavity;
-    DrumAirSpec airBox;                 // used when cavity.model == AirModel::airbox
-    OutsideAirSpec outside;             // with the cavity or no air, not in the air box
+    DrumAirSpec airBox;     // used when cavity.model == AirModel::airbox
+    OutsideAirSpec outside; // with the cavity or no air, not in the air box
     MicSpec mics;
     MalletSpec mallet;
-    int numMallets = 4;                 // independent mallets for flams and rolls
-    double strikeSpeedMax_m_per_s = 0.0;// MIDI velocity 127 (from the schema)
-    double strikeRadius_frac = 0.0;     // default strike point, fraction of R from the centre (from the schema)
-    double outputGain = 0.0;            // scales the mixed output (from the schema)
+    int numMallets = 4;                  // independent mallets for flams and rolls
+    double strikeSpeedMax_m_per_s = 0.0; // MIDI velocity 127 (from the schema)
+    double strikeRadius_frac = 0.0;      // default strike point, fraction of R from the centre (from the schema)
+    double outputGain = 0.0;             // scales the mixed output (from the schema)
 
     // Throws std::invalid_argument when a value is out of physical range or when the
     // grid the scheme needs cannot be built.

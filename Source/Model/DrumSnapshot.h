@@ -11,22 +11,22 @@ namespace snaresim
 
 struct DrumSnapshot
 {
-    static constexpr int raster = 48;       // head pixels per side, covering [-R, R]^2
+    static constexpr int raster = 48; // head pixels per side, covering [-R, R]^2
     static constexpr int maxWires = 64;
-    static constexpr int wirePoints = 48;   // samples along each wire
+    static constexpr int wirePoints = 48; // samples along each wire
 
     std::array<float, raster * raster> batter {}; // displacement (m); 0 outside the head
     std::array<float, raster * raster> carry {};
     std::array<unsigned char, raster * raster> onHead {}; // 1 where the raster point is on the head
 
     int numWires = 0;
-    float wireLength_frac = 0.0f;   // wire length over the head diameter
-    std::array<float, maxWires> wireY_frac {};                       // wire position across, fraction of R
-    std::array<float, maxWires * wirePoints> wire {};                // displacement (m)
-    std::array<unsigned char, maxWires * wirePoints> touching {};   // 1 where the wire presses on the head
+    float wireLength_frac = 0.0f;                                 // wire length over the head diameter
+    std::array<float, maxWires> wireY_frac {};                    // wire position across, fraction of R
+    std::array<float, maxWires * wirePoints> wire {};             // displacement (m)
+    std::array<unsigned char, maxWires * wirePoints> touching {}; // 1 where the wire presses on the head
 
     bool snaresEngaged = true;
-    float peakDisplacement = 0.0f;  // largest |w| over both heads (m), for colour scaling
+    float peakDisplacement = 0.0f; // largest |w| over both heads (m), for colour scaling
     long long samplesRendered = 0;
 };
 

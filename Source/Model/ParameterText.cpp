@@ -31,9 +31,9 @@ std::string_view trimmed(std::string_view s)
 
 bool equalNoCase(std::string_view a, std::string_view b)
 {
-    return a.size() == b.size()
-        && std::equal(a.begin(), a.end(), b.begin(),
-                      [](char x, char y) { return std::tolower((unsigned char) x) == std::tolower((unsigned char) y); });
+    return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
+               return std::tolower((unsigned char) x) == std::tolower((unsigned char) y);
+           });
 }
 
 std::string capitalised(std::string_view s)
@@ -179,7 +179,7 @@ std::optional<double> parseValue(const ParameterSpec& spec, std::string_view tex
     if (ec != std::errc {} || ! std::isfinite(number))
         return std::nullopt;
 
-    const auto unit = trimmed(std::string_view(end, (std::size_t) (digits.data() + digits.size() - end)));
+    const auto unit = trimmed(std::string_view(end, (std::size_t)(digits.data() + digits.size() - end)));
     const auto f = valueFormat(spec);
     if (unit.empty())
         return bare == BareNumber::writtenUnit ? number / f.scale : number;

@@ -16,11 +16,11 @@ namespace snaresim
 
 struct ValueFormat
 {
-    double scale = 1.0;         // written number = value * scale
-    std::string unit;           // written unit, UTF-8 (mm for m, g for kg, m² for m^2)
-    std::string schemaUnit;     // the schema's unit, UTF-8
+    double scale = 1.0;     // written number = value * scale
+    std::string unit;       // written unit, UTF-8 (mm for m, g for kg, m² for m^2)
+    std::string schemaUnit; // the schema's unit, UTF-8
     int decimals = 0;
-    bool scientific = false;    // mantissa with `decimals` decimals, "e", exponent
+    bool scientific = false; // mantissa with `decimals` decimals, "e", exponent
 };
 
 ValueFormat valueFormat(const ParameterSpec& spec);

@@ -24,6 +24,7 @@ constexpr auto K = ParamKind::choice;
 // Ranges chosen for a 14 x 5.5 inch snare (its defaults: docs/MODEL.md, "Defaults").
 // The head and wire grids are designed for the largest tension, high damping and
 // shallowest shell allowed here, so moving those controls never needs a new grid.
+// clang-format off
 constexpr std::array<ParameterSpec, kNumParameters> kSpecs {{
     { P::batterTension, "batter_tension", "Membrane tension", "N/m", 1000.0, 6000.0, 3050.0, S::linear, N::coefficients,
       "Tension of the batter (top) head; 3050 N/m puts its (0,1) mode near 200 Hz", C, "", "main" },
@@ -103,6 +104,7 @@ constexpr std::array<ParameterSpec, kNumParameters> kSpecs {{
       "With the outside air: the air sloshing beside the heads weighs on their higher modes and lowers them 7-11 %, as the air box does; the drum then costs about 1.6 times as much (BENCHMARKS.md), so it is off by default; the air box has its own",
       B, "off|on", "heads" },
 }};
+// clang-format on
 
 constexpr bool tableInOrder()
 {
@@ -113,6 +115,7 @@ constexpr bool tableInOrder()
 }
 static_assert(tableInOrder(), "parameter table must be in ParamId order");
 
+// clang-format off
 constexpr std::array<ParameterGroup, 6> kGroups {{
     { "main", "Tension & damping" },
     { "heads", "Heads & shell" },
@@ -121,6 +124,7 @@ constexpr std::array<ParameterGroup, 6> kGroups {{
     { "model", "Model" },
     { "output", "Microphones & output" },
 }};
+// clang-format on
 
 constexpr bool everyParameterInAGroup()
 {
@@ -155,17 +159,20 @@ static_assert(toggleAndChoiceNamesComplete(), "toggles and choices name every va
 // Version 0 (no version attribute) and 1: the first table, where the damping was the batter's
 // T60 and two keys had other names. Versions 0 to 2: Quality was the grids' coarseness, a
 // multiple of their stability bounds at 48 kHz; it is the bandwidth those grids carry.
+// clang-format off
 constexpr std::array<ParameterMigration, 4> kMigrations {{
     { 2, "batter_decay", P::damping, &dampingFromT60 },
     { 2, "batter_high_damping", P::highDamping, nullptr },
     { 2, "listen_position", P::micTopPosition, nullptr },
     { 3, "grid_coarseness", P::bandwidth, &qualityBandwidth_Hz },
 }};
+// clang-format on
 
 // Versions 0 to 3: their defaults, where a state does not hold the key (the outside air off, the
 // batter in single precision, the losses of then); with the outside air they had its near field,
 // which became a parameter of its own in version 4. Version 4: the batter in double, its losses and
 // snare tension. The first entry for a key that applies to a state wins.
+// clang-format off
 constexpr std::array<ImpliedParameter, 9> kImplied {{
     { 4, P::outsideAir, 0.0 },
     { 4, P::nearField, 1.0 },
@@ -177,6 +184,7 @@ constexpr std::array<ImpliedParameter, 9> kImplied {{
     { 5, P::highDamping, 4e-4 },
     { 5, P::snareTension, 20.0 },
 }};
+// clang-format on
 
 constexpr double kLongestT60_s = 4.0, kShortestT60_s = 0.15;
 } // namespace
@@ -214,10 +222,7 @@ std::optional<std::pair<ParamId, double>> migrateOldKey(std::string_view key, do
     return migrateParameter(0, key, value);
 }
 
-double dampingT60(double dampingPercent)
-{
-    return kLongestT60_s * std::pow(kShortestT60_s / kLongestT60_s, dampingPercent / 100.0);
-}
+double dampingT60(double dampingPercent) { return kLongestT60_s * std::pow(kShortestT60_s / kLongestT60_s, dampingPercent / 100.0); }
 
 double dampingFromT60(double t60)
 {
@@ -249,9 +254,8 @@ void ParameterSet::set(ParamId id, double value)
     if (! std::isfinite(value) || value < s.minValue || value > s.maxValue || ! whole)
     {
         std::ostringstream msg;
-        msg << "parameter " << s.key << " = " << value << " is outside its range [" << s.minValue << ", "
-            << s.maxValue << "]" << (s.unit.empty() ? "" : " ") << s.unit
-            << (s.kind == ParamKind::continuous ? "" : " or not a whole number");
+        msg << "parameter " << s.key << " = " << value << " is outside its range [" << s.minValue << ", " << s.maxValue << "]"
+            << (s.unit.empty() ? "" : " ") << s.unit << (s.kind == ParamKind::continuous ? "" : " or not a whole number");
         throw std::out_of_range(msg.str());
     }
     values[static_cast<std::size_t>(id)] = value;
@@ -271,10 +275,10 @@ std::string describeParameters()
     std::ostringstream out;
     out << "# id  min  max  default  unit  scale  description\n";
     for (const auto& s : kSpecs)
-        out << s.key << "  " << s.minValue << "  " << s.maxValue << "  " << s.defaultValue << "  "
-            << (s.unit.empty() ? "-" : s.unit) << "  " << (s.scale == ParamScale::logarithmic ? "log" : "lin")
-            << "  " << s.name << ": " << s.help << (s.choices.empty() ? "" : " [") << s.choices
-            << (s.choices.empty() ? "" : "]") << (s.rebuildsModel() ? " (rebuilds the model)" : "") << "\n";
+        out << s.key << "  " << s.minValue << "  " << s.maxValue << "  " << s.defaultValue << "  " << (s.unit.empty() ? "-" : s.unit)
+            << "  " << (s.scale == ParamScale::logarithmic ? "log" : "lin") << "  " << s.name << ": " << s.help
+            << (s.choices.empty() ? "" : " [") << s.choices << (s.choices.empty() ? "" : "]")
+            << (s.rebuildsModel() ? " (rebuilds the model)" : "") << "\n";
     return out.str();
 }
 

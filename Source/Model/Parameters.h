@@ -79,8 +79,8 @@ enum class ParamKind
 {
     continuous,
     integer,
-    toggle,     // 0 or 1
-    choice      // 0 .. n-1, names in ParameterSpec::choices ("a|b|c")
+    toggle, // 0 or 1
+    choice  // 0 .. n-1, names in ParameterSpec::choices ("a|b|c")
 };
 
 // What a change of the parameter needs from the running model.
@@ -94,9 +94,9 @@ enum class ChangeNeeds
 struct ParameterSpec
 {
     ParamId id;
-    std::string_view key;   // stable ID used by the plugin, the renderer and saved states
-    std::string_view name;  // human-readable name
-    std::string_view unit;  // SI unit (or "" for a pure number)
+    std::string_view key;  // stable ID used by the plugin, the renderer and saved states
+    std::string_view name; // human-readable name
+    std::string_view unit; // SI unit (or "" for a pure number)
     double minValue;
     double maxValue;
     double defaultValue;
@@ -104,8 +104,8 @@ struct ParameterSpec
     ChangeNeeds needs;
     std::string_view help;
     ParamKind kind = ParamKind::continuous;
-    std::string_view choices = "";  // choice names "a|b|c"; toggles "off|on"
-    std::string_view group = "";    // key into parameterGroups()
+    std::string_view choices = ""; // choice names "a|b|c"; toggles "off|on"
+    std::string_view group = "";   // key into parameterGroups()
 
     // True when a change needs a model built off the audio thread.
     constexpr bool rebuildsModel() const { return needs != ChangeNeeds::coefficients; }
@@ -155,10 +155,10 @@ private:
 inline constexpr int kStateVersion = 5;
 struct ParameterMigration
 {
-    int beforeVersion;            // applies to states older than this
+    int beforeVersion; // applies to states older than this
     std::string_view oldKey;
     ParamId id;
-    double (*convert)(double);    // nullptr: the value as it was
+    double (*convert)(double); // nullptr: the value as it was
 };
 std::span<const ParameterMigration> parameterMigrations();
 // A parameter that states older than beforeVersion may not hold, and the value that keeps their

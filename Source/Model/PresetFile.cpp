@@ -24,10 +24,7 @@ std::string_view trimmed(std::string_view s)
     return s;
 }
 
-[[noreturn]] void fail(int line, const std::string& what)
-{
-    throw PresetFileError("line " + std::to_string(line) + ": " + what);
-}
+[[noreturn]] void fail(int line, const std::string& what) { throw PresetFileError("line " + std::to_string(line) + ": " + what); }
 
 std::string quoted(std::string_view s)
 {
@@ -158,8 +155,8 @@ std::string formatPresetFile(std::string_view name, const ParameterSet& params)
         if (c == '\n' || c == '\r' || c == '#')
             c = ' ';
     const auto title = trimmed(oneLine);
-    std::string out = "# SnareSim preset (snaresim-render --list-params lists the parameters)\nname = "
-                    + std::string(title.empty() ? "Untitled" : title) + "\n";
+    std::string out = "# SnareSim preset (snaresim-render --list-params lists the parameters)\nname = " +
+                      std::string(title.empty() ? "Untitled" : title) + "\n";
     for (const auto& s : parameterSpecs())
     {
         const double v = params.get(s.id);

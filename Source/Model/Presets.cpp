@@ -56,8 +56,7 @@ const FactoryPresets& factory()
 
 bool equalNoCase(std::string_view a, std::string_view b)
 {
-    return a.size() == b.size()
-        && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
+    return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
                return std::tolower((unsigned char) x) == std::tolower((unsigned char) y);
            });
 }

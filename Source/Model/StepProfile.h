@@ -79,10 +79,9 @@ struct StepProfile
     // "batter_free", ...: the JSON key.
     static std::string_view name(StepPhase phase)
     {
-        static constexpr std::string_view names[] = { "batter_free",    "carry_free",    "wires_free",   "mallets_free",
-                                                       "mallet_contact", "snare_contact", "cavity",       "air_begin",
-                                                       "batter_joint",   "carry_joint",   "air_join",     "energy",
-                                                       "signals",        "advance" };
+        static constexpr std::string_view names[] = { "batter_free",   "carry_free", "wires_free", "mallets_free", "mallet_contact",
+                                                      "snare_contact", "cavity",     "air_begin",  "batter_joint", "carry_joint",
+                                                      "air_join",      "energy",     "signals",    "advance" };
         static_assert(std::size(names) == (size_t) numPhases);
         return names[(size_t) phase];
     }

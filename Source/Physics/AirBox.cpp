@@ -30,11 +30,11 @@ std::string fmt(double v)
 // ghost columns.
 struct LayerFixes
 {
-    const AirCut* cuts;       // the layer's cut-link ends, by row
-    const int* rowStart;      // interior row iy's (1..ny) are [rowStart[iy - 1], rowStart[iy])
-    const double* gain;       // eq. (51) by number of wall faces m: m lambda / 2
-    const double* inverse;    // 1 / (1 + m lambda / 2)
-    int layerFaces;           // wall faces of the layer itself (0, or 1 at the top or bottom); -1: reflecting walls
+    const AirCut* cuts;    // the layer's cut-link ends, by row
+    const int* rowStart;   // interior row iy's (1..ny) are [rowStart[iy - 1], rowStart[iy])
+    const double* gain;    // eq. (51) by number of wall faces m: m lambda / 2
+    const double* inverse; // 1 / (1 + m lambda / 2)
+    int layerFaces;        // wall faces of the layer itself (0, or 1 at the top or bottom); -1: reflecting walls
 };
 
 #define SNARESIM_KERNELS "AirBoxKernels.inl"
@@ -79,7 +79,7 @@ struct alignas(64) Range
     std::uint32_t left() const
     {
         const std::uint64_t w = word.load(std::memory_order_relaxed);
-        return (std::uint32_t) (w >> 32) - (std::uint32_t) w;
+        return (std::uint32_t)(w >> 32) - (std::uint32_t) w;
     }
     // the position claimed, or -1 when the range is empty
     long claim(bool fromFront)
@@ -87,7 +87,7 @@ struct alignas(64) Range
         std::uint64_t w = word.load(std::memory_order_relaxed);
         for (;;)
         {
-            const auto front = (std::uint32_t) w, back = (std::uint32_t) (w >> 32);
+            const auto front = (std::uint32_t) w, back = (std::uint32_t)(w >> 32);
             if (front >= back)
                 return -1;
             const std::uint64_t next = fromFront ? pack(front + 1, back) : pack(front, back - 1);
@@ -122,7 +122,7 @@ struct AirBox::Pool
     {
         const auto w = (std::uint32_t) ranges.size();
         for (std::uint32_t t = 0; t < w; ++t)
-            ranges[t].set((std::uint32_t) ((std::uint64_t) count * t / w), (std::uint32_t) ((std::uint64_t) count * (t + 1) / w));
+            ranges[t].set((std::uint32_t)((std::uint64_t) count * t / w), (std::uint32_t)((std::uint64_t) count * (t + 1) / w));
         finished.store(0, std::memory_order_relaxed);
         generation.fetch_add(1, std::memory_order_release);
         generation.notify_all(); // no system call unless a worker sleeps
@@ -198,8 +198,8 @@ AirBox::AirBox(const AirBoxSpec& sp, double timeStep)
     if (! (c > 0.0) || ! (rho > 0.0) || ! (sigma >= 0.0) || ! std::isfinite(c + rho + sigma))
         throw std::invalid_argument("air box: sound speed and density must be positive and sigma_a not negative");
     if (! (sp.gridCoarseness >= 1.0) || ! std::isfinite(sp.gridCoarseness))
-        throw std::invalid_argument("air box: grid coarseness " + fmt(sp.gridCoarseness)
-                                    + " is below the stability bound of eq. 41 (it must be at least 1)");
+        throw std::invalid_argument("air box: grid coarseness " + fmt(sp.gridCoarseness) +
+                                    " is below the stability bound of eq. 41 (it must be at least 1)");
     h = gridSpacing(sp, k);
     for (int a = 0; a < 3; ++a)
     {
@@ -208,15 +208,15 @@ AirBox::AirBox(const AirBoxSpec& sp, double timeStep)
             throw std::invalid_argument("air box: the box size must be positive (axis " + std::to_string(a) + ": " + fmt(L) + " m)");
         const double cells = std::ceil(L / h - 1e-9);
         if (cells < 3.0)
-            throw std::invalid_argument("air box: a " + fmt(L) + " m side holds fewer than 3 points at h = " + fmt(h)
-                                        + " m (eq. 41 at this sample rate); make the box larger or the sample rate higher");
+            throw std::invalid_argument("air box: a " + fmt(L) + " m side holds fewer than 3 points at h = " + fmt(h) +
+                                        " m (eq. 41 at this sample rate); make the box larger or the sample rate higher");
         if (cells > 1e5)
             throw std::invalid_argument("air box: " + fmt(cells) + " points along one side is too many");
         n[(size_t) a] = (int) cells;
     }
     if ((double) n[0] * n[1] * n[2] > (double) maxPoints)
-        throw std::invalid_argument("air box: " + fmt((double) n[0] * n[1] * n[2]) + " points at h = " + fmt(h)
-                                    + " m is more than the limit of " + fmt((double) maxPoints) + "; lower the sample rate or the box size");
+        throw std::invalid_argument("air box: " + fmt((double) n[0] * n[1] * n[2]) + " points at h = " + fmt(h) +
+                                    " m is more than the limit of " + fmt((double) maxPoints) + "; lower the sample rate or the box size");
     if (sp.shell)
     {
         const double R = sp.shellRadius_m, H = sp.shellDepth_m;
@@ -224,9 +224,9 @@ AirBox::AirBox(const AirBoxSpec& sp, double timeStep)
             throw std::invalid_argument("air box: the shell's radius and depth must be positive");
         const double halfX = 0.5 * n[0] * h, halfY = 0.5 * n[1] * h, halfZ = 0.5 * n[2] * h;
         if (R + h > std::min(halfX, halfY) || 0.5 * H + h > halfZ)
-            throw std::invalid_argument("air box: the drum (radius " + fmt(R) + " m, depth " + fmt(H) + " m) does not fit in the "
-                                        + fmt(sp.size_m[0]) + " x " + fmt(sp.size_m[1]) + " x " + fmt(sp.size_m[2])
-                                        + " m box with a cell to spare");
+            throw std::invalid_argument("air box: the drum (radius " + fmt(R) + " m, depth " + fmt(H) + " m) does not fit in the " +
+                                        fmt(sp.size_m[0]) + " x " + fmt(sp.size_m[1]) + " x " + fmt(sp.size_m[2]) +
+                                        " m box with a cell to spare");
         if (H < 2.0 * h)
             throw std::invalid_argument("air box: the shell depth " + fmt(H) + " m is less than two cells (h = " + fmt(h) + " m)");
     }
@@ -285,7 +285,7 @@ void AirBox::buildWalls()
 
 void AirBox::cutLink(long a, long b, int axis)
 {
-    const auto bit = (std::uint8_t) (1u << axis);
+    const auto bit = (std::uint8_t)(1u << axis);
     if (cutMask[(size_t) a] & bit)
         return;
     cutMask[(size_t) a] |= bit;
@@ -293,10 +293,7 @@ void AirBox::cutLink(long a, long b, int axis)
     cutB.push_back(b);
 }
 
-int AirBox::layerBelow(double z) const
-{
-    return (int) std::lround((z - coordinate(2, 0) - 0.5 * h) / h);
-}
+int AirBox::layerBelow(double z) const { return (int) std::lround((z - coordinate(2, 0) - 0.5 * h) / h); }
 
 // eq. (6): the shell is the staircase between nodes within R of the axis and nodes beyond;
 // the horizontal links across it are cut on every layer between the two heads' planes.
@@ -328,8 +325,8 @@ void AirBox::buildShell()
 std::vector<long> AirBox::cutDisc(int layer, double cx, double cy, double radius)
 {
     if (layer < 0 || layer + 1 >= n[2])
-        throw std::invalid_argument("air box: a disc between layers " + std::to_string(layer) + " and " + std::to_string(layer + 1)
-                                    + " is outside the box");
+        throw std::invalid_argument("air box: a disc between layers " + std::to_string(layer) + " and " + std::to_string(layer + 1) +
+                                    " is outside the box");
     std::vector<long> nodes;
     for (int iy = 0; iy < n[1]; ++iy)
         for (int ix = 0; ix < n[0]; ++ix)
@@ -460,8 +457,8 @@ void AirBox::updateLayer(int iz, Ring& ring)
             const int q = down ? pz - 1 : pz + 1; // the layer whose v is computed here
             const double* vo = ringLayer(ring, down ? pz + 1 : pz - 1);
             double* vn = ring.v.data() + (q % 3) * sxy;
-            SNARESIM_ON_VECTOR_TARGET(layerLossyAhead)(out, u, up, side[1], vo, vn, lvl[1] + q * sxy, lvl[2] + q * sxy, first,
-                                                       end, sx, a0, b0, a1, b1);
+            SNARESIM_ON_VECTOR_TARGET(layerLossyAhead)
+            (out, u, up, side[1], vo, vn, lvl[1] + q * sxy, lvl[2] + q * sxy, first, end, sx, a0, b0, a1, b1);
             std::copy(vn + sx, vn + 2 * sx, vn); // vn's ghost rows
             std::copy(vn + n[1] * sx, vn + (n[1] + 1) * sx, vn + (n[1] + 1) * sx);
             ring.tag[q % 3] = q;

@@ -38,11 +38,11 @@ enum class ShellEnds
 
 struct AirBoxSpec
 {
-    double soundSpeed_m_per_s = 343.0;  // c_a
-    double density_kg_per_m3 = 1.21;    // rho_a
-    double sigma_m = 2e-6;              // sigma_a, viscothermal loss (paper section 5.3)
-    double gridSigma_m = -1.0;          // largest sigma_a the grid allows (negative: sigma_m)
-    double gridCoarseness = 1.0;        // h = coarseness * bound of eq. (41); >= 1
+    double soundSpeed_m_per_s = 343.0;              // c_a
+    double density_kg_per_m3 = 1.21;                // rho_a
+    double sigma_m = 2e-6;                          // sigma_a, viscothermal loss (paper section 5.3)
+    double gridSigma_m = -1.0;                      // largest sigma_a the grid allows (negative: sigma_m)
+    double gridCoarseness = 1.0;                    // h = coarseness * bound of eq. (41); >= 1
     std::array<double, 3> size_m { 0.6, 0.6, 0.6 }; // box (x, y, z), centred at the origin
     AirWalls walls = AirWalls::absorbing;
 
@@ -160,28 +160,28 @@ private:
     void buildWalls();
     void buildShell();
     void cutLink(long a, long b, int axis);
-    void indexCuts();                         // cut links by layer, each from both ends
+    void indexCuts();                           // cut links by layer, each from both ends
     void setOrder(std::span<const int> layers); // the listed layers and the rest
     const double* ringLayer(Ring& ring, int pz) const;
-    void updateLayer(int iz, Ring& ring);     // one layer of next(), complete
+    void updateLayer(int iz, Ring& ring); // one layer of next(), complete
     void fillGhosts(double* u);
 
     AirBoxSpec spec;
     double k, h, c, rho, sigma;
-    double l2 = 0, s = 0;               // lambda^2, c sigma k / h^2
+    double l2 = 0, s = 0; // lambda^2, c sigma k / h^2
     double a0 = 0, a1 = 0, b0 = 0, b1 = 0;
     std::array<double, 4> wallGain {}, wallInverse {}; // eq. (51) by number of wall faces m
     std::array<int, 3> n {};
-    long sx = 0, sy = 0, total = 0;     // padded strides and size
+    long sx = 0, sy = 0, total = 0; // padded strides and size
 
-    std::vector<double> store;          // three padded levels
-    double* lvl[3] {};                  // next, now, prev
+    std::vector<double> store; // three padded levels
+    double* lvl[3] {};         // next, now, prev
 
     // cut links (a, b): the bulk stencil includes them; each layer takes them back
     std::vector<long> cutA, cutB;
-    std::vector<std::uint8_t> cutMask;  // per node: bit axis set when the link to +axis is cut
-    std::vector<AirCut> cuts;           // by layer and row, from both ends: node i loses v_j - v_i
-    std::vector<int> cutRow;            // interior row iy of layer iz: [cutRow[iz ny + iy], cutRow[iz ny + iy + 1])
+    std::vector<std::uint8_t> cutMask; // per node: bit axis set when the link to +axis is cut
+    std::vector<AirCut> cuts;          // by layer and row, from both ends: node i loses v_j - v_i
+    std::vector<int> cutRow;           // interior row iy of layer iz: [cutRow[iz ny + iy], cutRow[iz ny + iy + 1])
 
     // absorbing wall nodes by number of wall faces m = 1, 2, 3 (for stepLoss)
     std::array<std::vector<long>, 3> wallNodes;
@@ -191,7 +191,7 @@ private:
     bool pending = false;
 
     int threadCount = 1;
-    std::vector<Ring> rings;            // one per thread, the caller's first
+    std::vector<Ring> rings; // one per thread, the caller's first
     struct Pool;
     std::unique_ptr<Pool> pool;
 };

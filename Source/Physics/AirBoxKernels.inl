@@ -3,8 +3,7 @@
 // without FMA contraction, so every target and every split between threads gives the same bits.
 
 // v = a1 Psi^n + b1 Psi^{n-1} over one padded layer (its ghosts included: they mirror).
-void layerV(double* __restrict v, const double* __restrict u, const double* __restrict up, long count,
-            double a1, double b1)
+void layerV(double* __restrict v, const double* __restrict u, const double* __restrict up, long count, double a1, double b1)
 {
     for (long i = 0; i < count; ++i)
         v[i] = a1 * u[i] + b1 * up[i];
@@ -14,9 +13,8 @@ void layerV(double* __restrict v, const double* __restrict u, const double* __re
 // this layer (vc), the one below (vb) and the one above (va), i.e. out = a0 u + b0 up + (the six
 // neighbours of v). Pointers at the padded layer's start. The loop runs over the layer's rows as
 // one range, ghost columns included: no row ends to handle (those nodes are then fixed).
-void layerLossy(double* __restrict out, const double* __restrict u, const double* __restrict up,
-                const double* __restrict vc, const double* __restrict vb, const double* __restrict va,
-                long first, long end, long sx, double a0, double b0)
+void layerLossy(double* __restrict out, const double* __restrict u, const double* __restrict up, const double* __restrict vc,
+                const double* __restrict vb, const double* __restrict va, long first, long end, long sx, double a0, double b0)
 {
     for (long m = first; m < end; ++m)
     {
@@ -29,10 +27,9 @@ void layerLossy(double* __restrict out, const double* __restrict u, const double
 // below or the one above) while the other (vo) is given: the layer and that neighbour's v in one
 // pass. The sum is the same either way round (vo + vn = vb + va exactly). vn's ghost columns
 // come out as mirrors (their Psi are); its ghost rows are the caller's.
-void layerLossyAhead(double* __restrict out, const double* __restrict u, const double* __restrict up,
-                     const double* __restrict vc, const double* __restrict vo, double* __restrict vn,
-                     const double* __restrict un, const double* __restrict upn, long first, long end,
-                     long sx, double a0, double b0, double a1, double b1)
+void layerLossyAhead(double* __restrict out, const double* __restrict u, const double* __restrict up, const double* __restrict vc,
+                     const double* __restrict vo, double* __restrict vn, const double* __restrict un, const double* __restrict upn,
+                     long first, long end, long sx, double a0, double b0, double a1, double b1)
 {
     for (long m = first; m < end; ++m)
     {
@@ -44,8 +41,8 @@ void layerLossyAhead(double* __restrict out, const double* __restrict u, const d
 }
 
 // The same without sigma_a (v = lambda^2 u): out = a0 u + a1 (6 neighbours of u) - up.
-void layerLossless(double* __restrict out, const double* __restrict u, const double* __restrict up,
-                   long first, long end, long sx, long sxy, double a0, double a1)
+void layerLossless(double* __restrict out, const double* __restrict u, const double* __restrict up, long first, long end, long sx, long sxy,
+                   double a0, double a1)
 {
     for (long m = first; m < end; ++m)
     {
@@ -58,8 +55,8 @@ void layerLossless(double* __restrict out, const double* __restrict u, const dou
 // side[0..2], the v of the layers below, this, above (lossy); or, all nullptr, a1 (u_j - u_i)
 // from u (lossless)), then the absorbing walls, then the ghost columns. A node's arithmetic is
 // the same as in one pass row by row.
-void fixLayer(double* __restrict out, const double* __restrict up, const double* const* side,
-              const double* __restrict u, double a1, int nx, int ny, long sx, const LayerFixes& f)
+void fixLayer(double* __restrict out, const double* __restrict up, const double* const* side, const double* __restrict u, double a1, int nx,
+              int ny, long sx, const LayerFixes& f)
 {
     const AirCut* const cutEnd = f.cuts + f.rowStart[ny];
     if (side[1] != nullptr)

@@ -29,10 +29,10 @@ public:
     // of this radius and surface density at time step k: K_max k^2 A / (2 rho), A = pi R^2.
     static double kineticReserve(const CavitySpec& spec, double radius_m, double density_kg_per_m2, double timeStep_s);
 
-    double pressureNow() const { return -K * dVNow; }  // p^n, Pa
+    double pressureNow() const { return -K * dVNow; } // p^n, Pa
     void setVolumeNext(double dV) { dVNext = dV; }
     double energy() const { return 0.5 * K * dVNext * dVNow; } // at n+1/2
-    double stepLoss() const { return 0.0; }                     // adiabatic, lossless
+    double stepLoss() const { return 0.0; }                    // adiabatic, lossless
     void advance() { dVNow = dVNext; }
     void clear() { dVNow = dVNext = 0.0; }
 

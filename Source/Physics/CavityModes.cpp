@@ -22,7 +22,9 @@ double depthOf(const CavitySpec& s) { return s.gridShellDepth_m > 0.0 ? std::max
 double faceNorm(const CavityMode& mode, double R)
 {
     const double j = mode.zero;
-    const double radial = j == 0.0 ? 0.5 * R * R : 0.5 * R * R * (1.0 - (double) (mode.m * mode.m) / (j * j)) * std::pow(std::cyl_bessel_j((double) mode.m, j), 2.0);
+    const double radial =
+        j == 0.0 ? 0.5 * R * R
+                 : 0.5 * R * R * (1.0 - (double) (mode.m * mode.m) / (j * j)) * std::pow(std::cyl_bessel_j((double) mode.m, j), 2.0);
     return radial * (mode.m == 0 ? 2.0 * std::numbers::pi : std::numbers::pi);
 }
 // int cos^2(p pi z / H) dz over the depth.
@@ -112,8 +114,8 @@ double CavityModes::kineticReserve(const CavitySpec& spec, double upTo_Hz, doubl
             perShape.resize((size_t) mode.shape + 1, 0.0);
         perShape[(size_t) mode.shape] += 1.0 / axialNorm(mode.p, H);
     }
-    const double lambda = spec.airDensity_kg_per_m3 * spec.soundSpeed_m_per_s * spec.soundSpeed_m_per_s
-                        * *std::max_element(perShape.begin(), perShape.end());
+    const double lambda =
+        spec.airDensity_kg_per_m3 * spec.soundSpeed_m_per_s * spec.soundSpeed_m_per_s * *std::max_element(perShape.begin(), perShape.end());
     return 2.0 * lambda * k * k / density;
 }
 

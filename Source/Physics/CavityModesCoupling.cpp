@@ -34,8 +34,7 @@ CavityModesCoupling::Face CavityModesCoupling::makeFace(Membrane& head, double s
 
 CavityModesCoupling::CavityModesCoupling(Membrane& batter, Membrane& carry, CavityModes& modes, double cellSize)
     : air(modes), faces { makeFace(batter, 1.0, cellSize), makeFace(carry, -1.0, cellSize) }
-{
-}
+{}
 
 void CavityModesCoupling::applyPressures() noexcept
 {

@@ -43,11 +43,11 @@ private:
     {
         Membrane* head;
         HeadCells cells;
-        double sign;                   // +1 batter; -1 carry head (the force's sense, times (-1)^p per mode)
-        std::vector<double> shape;     // the face shapes' cell means per block (0 where no cell), shape-major
-        std::vector<double> blockSum;  // Membrane::blockSumsNext
-        std::vector<double> perShape;  // per shape: its modes' pressures summed, or its projection
-        std::vector<double> pressure;  // per block (0 where no cell)
+        double sign;                  // +1 batter; -1 carry head (the force's sense, times (-1)^p per mode)
+        std::vector<double> shape;    // the face shapes' cell means per block (0 where no cell), shape-major
+        std::vector<double> blockSum; // Membrane::blockSumsNext
+        std::vector<double> perShape; // per shape: its modes' pressures summed, or its projection
+        std::vector<double> pressure; // per block (0 where no cell)
     };
     Face makeFace(Membrane& head, double sign, double cellSize_m) const;
 

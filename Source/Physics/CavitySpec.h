@@ -14,9 +14,9 @@ enum class AirModel
 
 struct CavitySpec
 {
-    AirModel model = AirModel::cavity;  // from the schema
-    double shellDepth_m = 0.0;          // H: V0 = pi R^2 H (from the schema)
-    double gridShellDepth_m = 0.0;      // shallowest depth the grid allows (0: the depth itself)
+    AirModel model = AirModel::cavity; // from the schema
+    double shellDepth_m = 0.0;         // H: V0 = pi R^2 H (from the schema)
+    double gridShellDepth_m = 0.0;     // shallowest depth the grid allows (0: the depth itself)
     double airDensity_kg_per_m3 = 1.21;
     double soundSpeed_m_per_s = 343.0;
     // The enclosed air's own modes (CavityModes.h) up to this frequency, on the heads through

@@ -2,8 +2,7 @@
 // compiled once per vector target by PerVectorTarget.inl: no include guard, no includes.
 
 template <class Real>
-void combine(int shapes, int cells, const double* __restrict weight, const Real* __restrict shape,
-             double* __restrict out)
+void combine(int shapes, int cells, const double* __restrict weight, const Real* __restrict shape, double* __restrict out)
 {
     std::fill(out, out + cells, 0.0);
     int s = 0;
@@ -29,8 +28,7 @@ void combine(int shapes, int cells, const double* __restrict weight, const Real*
 }
 
 template <class Real>
-void project(int shapes, int cells, const Real* __restrict shape, const double* __restrict v,
-             double scale, double* __restrict out)
+void project(int shapes, int cells, const Real* __restrict shape, const double* __restrict v, double scale, double* __restrict out)
 {
     int s = 0;
     for (; s + 4 <= shapes; s += 4)

@@ -6,8 +6,6 @@
 #include <cstddef>
 #include <vector>
 
-
-
 namespace snaresim
 {
 
@@ -15,9 +13,9 @@ namespace snaresim
 // Used for the mallet's contact patch g_b and the listening point.
 struct GridDistribution
 {
-    std::vector<int> index;     // flat node indices (interior nodes only)
-    std::vector<double> g;      // values of g at those nodes (1/m^2)
-    int size = 0;               // used entries (capacity is index.size())
+    std::vector<int> index; // flat node indices (interior nodes only)
+    std::vector<double> g;  // values of g at those nodes (1/m^2)
+    int size = 0;           // used entries (capacity is index.size())
 
     void reserve(int capacity)
     {
@@ -34,7 +32,7 @@ public:
 
     double radius() const { return R; }
     double spacing() const { return h; }
-    int width() const { return n; }             // N: nodes per row, padding included
+    int width() const { return n; } // N: nodes per row, padding included
     int numNodes() const { return n * n; }
     int numInterior() const { return interiorCount; }
     const std::vector<double>& mask() const { return interior; } // 1 inside, 0 on/after the rim

@@ -38,8 +38,7 @@ double solveCollision(const PowerLawPotential& phi, double gamma, double a, doub
         const double stepSize = std::abs(next - r);
         r = next;
         // Converged, or stalled at the round-off of F after converging.
-        if (stepSize <= collisionTolerance * scale || hi - lo <= 4.0e-16 * scale
-            || (stepSize >= lastStep && stepSize <= 1.0e-11 * scale))
+        if (stepSize <= collisionTolerance * scale || hi - lo <= 4.0e-16 * scale || (stepSize >= lastStep && stepSize <= 1.0e-11 * scale))
             return r;
         lastStep = stepSize;
     }

@@ -9,8 +9,8 @@ void DrumAir::build(const AirBoxSpec& spec, int threads, double H, double k, Mem
 {
     box = std::make_unique<AirBox>(spec, k);
     box->setThreads(threads);
-    top = std::make_unique<HeadEmbedding>(*box, batter, 0.5 * H);     // closes the shell's top end
-    bottom = std::make_unique<HeadEmbedding>(*box, carry, -0.5 * H);  // and its bottom end
+    top = std::make_unique<HeadEmbedding>(*box, batter, 0.5 * H);    // closes the shell's top end
+    bottom = std::make_unique<HeadEmbedding>(*box, carry, -0.5 * H); // and its bottom end
 }
 
 void DrumAir::placeMics(const std::array<AirPoint, DrumAirSpec::maxMics>& at, int count)

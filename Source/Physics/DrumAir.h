@@ -50,8 +50,8 @@ class DrumAir
 {
 public:
     static constexpr int maxTrials = 100;
-    static constexpr double tolerance = 1.0e-15;       // change of the pull / max |w| over the head
-    static constexpr double stallTolerance = 1.0e-12;  // stop when the change stops falling below this
+    static constexpr double tolerance = 1.0e-15;      // change of the pull / max |w| over the head
+    static constexpr double stallTolerance = 1.0e-12; // stop when the change stops falling below this
 
     DrumAir() = default; // no air box: inactive, energy 0
     DrumAir(const DrumAir&) = delete;
@@ -83,9 +83,15 @@ public:
     // contacts from the free state and writes the head's w^{n+1}; restore() puts the contacts'
     // own state (mallets' z, wires' u, ...) back to the free state for another trial.
     template <class Trial, class Restore>
-    JointSolveResult solveBatter(Trial&& trial, Restore&& restore) { return solve(*top, false, trial, restore); }
+    JointSolveResult solveBatter(Trial&& trial, Restore&& restore)
+    {
+        return solve(*top, false, trial, restore);
+    }
     template <class Trial, class Restore>
-    JointSolveResult solveCarry(Trial&& trial, Restore&& restore) { return solve(*bottom, true, trial, restore); }
+    JointSolveResult solveCarry(Trial&& trial, Restore&& restore)
+    {
+        return solve(*bottom, true, trial, restore);
+    }
 
     // The pressure microphones rho_a dt+ Psi at n+1/2 (after both heads are solved).
     void listen();

@@ -18,9 +18,9 @@ struct DrumAirSpec
     std::array<double, 3> size_m { 0.6, 0.6, 0.6 };
     double margin_m = 0.12;
     AirWalls walls = AirWalls::absorbing;
-    double sigma_m = 0.0;                // sigma_a, eq. (5) (from the schema)
-    double gridCoarseness = 1.0;         // h_a = coarseness * bound of eq. (41); >= 1
-    int threads = 1;                     // AirBox::setThreads
+    double sigma_m = 0.0;        // sigma_a, eq. (5) (from the schema)
+    double gridCoarseness = 1.0; // h_a = coarseness * bound of eq. (41); >= 1
+    int threads = 1;             // AirBox::setThreads
     // Pressure microphones rho_a dt Psi; none given: airMicPoints() gives the defaults.
     static constexpr int maxMics = 8;
     std::array<AirPoint, maxMics> mics {};

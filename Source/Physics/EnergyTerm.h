@@ -22,17 +22,28 @@ namespace snaresim
 {
 
 template <class T>
-concept EnergyOwner = requires(const T& owner) {
-    { owner.energy() } -> std::convertible_to<double>;
-    { owner.stepLoss() } -> std::convertible_to<double>;
+concept EnergyOwner = requires(const T& owner)
+{
+    {
+        owner.energy()
+        } -> std::convertible_to<double>;
+    {
+        owner.stepLoss()
+        } -> std::convertible_to<double>;
 };
 
 namespace detail
 {
 template <EnergyOwner T>
-double energyOf(const T& owner) { return owner.energy(); }
+double energyOf(const T& owner)
+{
+    return owner.energy();
+}
 template <EnergyOwner T>
-double stepLossOf(const T& owner) { return owner.stepLoss(); }
+double stepLossOf(const T& owner)
+{
+    return owner.stepLoss();
+}
 
 template <EnergyOwner T>
 double energyOf(const std::vector<T>& owners)
@@ -85,22 +96,26 @@ public:
     {
         if (! on)
             return 0.0;
-        return std::apply([](const auto& first, const auto&... rest) {
-            double e = detail::energyOf(first);
-            ((e += detail::energyOf(rest)), ...);
-            return e;
-        }, sources);
+        return std::apply(
+            [](const auto& first, const auto&... rest) {
+                double e = detail::energyOf(first);
+                ((e += detail::energyOf(rest)), ...);
+                return e;
+            },
+            sources);
     }
 
     double stepLoss() const
     {
         if (! on)
             return 0.0;
-        return std::apply([](const auto& first, const auto&... rest) {
-            double q = detail::stepLossOf(first);
-            ((q += detail::stepLossOf(rest)), ...);
-            return q;
-        }, sources);
+        return std::apply(
+            [](const auto& first, const auto&... rest) {
+                double q = detail::stepLossOf(first);
+                ((q += detail::stepLossOf(rest)), ...);
+                return q;
+            },
+            sources);
     }
 
     // True when owner is one of this term's owners.
@@ -139,9 +154,11 @@ template <class... Terms, class T>
 int termOwning(const std::tuple<Terms...>& terms, const T& owner)
 {
     int index = -1, i = 0;
-    std::apply([&](const auto&... t) {
-        ((index < 0 && t.isListed() && t.owns(owner) ? (void) (index = i) : (void) 0, i += t.isListed() ? 1 : 0), ...);
-    }, terms);
+    std::apply(
+        [&](const auto&... t) {
+            ((index < 0 && t.isListed() && t.owns(owner) ? (void) (index = i) : (void) 0, i += t.isListed() ? 1 : 0), ...);
+        },
+        terms);
     return index;
 }
 
@@ -153,11 +170,13 @@ void record(EnergyLedger& ledger, const std::tuple<Terms...>& terms)
     static_assert(sizeof...(Terms) > 0);
     int i = 0;
     std::apply([&](const auto&... t) { ((t.isListed() ? ledger.set(i++, t.energy()) : (void) 0), ...); }, terms);
-    const double loss = std::apply([](const auto& first, const auto&... rest) {
-        double q = first.stepLoss();
-        ((q += rest.stepLoss()), ...);
-        return q;
-    }, terms);
+    const double loss = std::apply(
+        [](const auto& first, const auto&... rest) {
+            double q = first.stepLoss();
+            ((q += rest.stepLoss()), ...);
+            return q;
+        },
+        terms);
     ledger.dissipated_J += loss;
 }
 

@@ -145,10 +145,7 @@ HeadEmbedding::~HeadEmbedding()
         head.setResponse(nullptr);
 }
 
-double HeadEmbedding::planeZ() const
-{
-    return air.planeAbove(d);
-}
+double HeadEmbedding::planeZ() const { return air.planeAbove(d); }
 
 double HeadEmbedding::volumeRatio() const
 {
@@ -219,14 +216,14 @@ namespace
 struct FreeRun
 {
     const double *next, *prev, *wm;
-    double* w;                       // w^{n+1}: w* in, A^{-1} r out
+    double* w; // w^{n+1}: w* in, A^{-1} r out
     const int* node;
     const long* cell;
-    double* r;                       // r per node
+    double* r; // r per node
     const double *value, *gain;
     double *sumPrev, *sumR, *pullFree, *airStep;
     long up;
-    double cellGain, alpha;          // ratio beta, alpha
+    double cellGain, alpha; // ratio beta, alpha
 };
 
 template <int N, int M>
@@ -282,8 +279,22 @@ void HeadEmbedding::solveFree(bool warm)
     double* rr = rNode.data();
     const int* node = nodes.data();
     forget();
-    FreeRun f { air.next(), air.prev(), head.previousDisplacement().data(), w, nullptr, nullptr, nullptr, value.data(), gain.data(),
-                sumPrev.data(), sumR.data(), pullFree.data(), airStep.data(), up, ratio * beta, alpha };
+    FreeRun f { air.next(),
+                air.prev(),
+                head.previousDisplacement().data(),
+                w,
+                nullptr,
+                nullptr,
+                nullptr,
+                value.data(),
+                gain.data(),
+                sumPrev.data(),
+                sumR.data(),
+                pullFree.data(),
+                airStep.data(),
+                up,
+                ratio * beta,
+                alpha };
     for (const Run& run : runs)
     {
         f.node = nodes.data() + nodeBegin[run.first];

@@ -92,7 +92,7 @@ public:
 
     int layer() const { return d; }
     double planeZ() const;
-    int airNodes() const { return (int) below.size(); } // air nodes over the head, per layer
+    int airNodes() const { return (int) below.size(); }  // air nodes over the head, per layer
     int headNodes() const { return (int) nodes.size(); } // head nodes J reaches
     int groups() const { return (int) count.size(); }
     bool airCoarser() const { return coarserAir; }
@@ -107,30 +107,30 @@ private:
     AirBox& air;
     Membrane& head;
     int d = 0;
-    long up = 0;                 // index offset from layer d to layer d + 1
-    std::vector<long> below;     // air nodes of layer d under the head (the cut links)
+    long up = 0;             // index offset from layer d to layer d + 1
+    std::vector<long> below; // air nodes of layer d under the head (the cut links)
     bool coarserAir = true;
     // Groups, each a run of head nodes and a run of air nodes (layer d) with J = value there.
-    std::vector<int> nodes;      // head nodes, group by group
-    std::vector<long> cells;     // air nodes, group by group
-    std::vector<int> nodeBegin;  // group g's head nodes: nodes[nodeBegin[g] .. nodeBegin[g + 1])
-    std::vector<int> cellBegin;  // group g's air nodes: cells[cellBegin[g] .. cellBegin[g + 1])
-    std::vector<int> groupOf;    // per head node (padded grid): its group, or -1
-    std::vector<int> cellGroup;  // per air node (in cells' order): its group
-    struct Run                   // groups first .. last - 1, each of `nodes` head and `cells` air nodes
+    std::vector<int> nodes;     // head nodes, group by group
+    std::vector<long> cells;    // air nodes, group by group
+    std::vector<int> nodeBegin; // group g's head nodes: nodes[nodeBegin[g] .. nodeBegin[g + 1])
+    std::vector<int> cellBegin; // group g's air nodes: cells[cellBegin[g] .. cellBegin[g + 1])
+    std::vector<int> groupOf;   // per head node (padded grid): its group, or -1
+    std::vector<int> cellGroup; // per air node (in cells' order): its group
+    struct Run                  // groups first .. last - 1, each of `nodes` head and `cells` air nodes
     {
         std::size_t first, last;
         int nodes, cells;
     };
     std::vector<Run> runs;
-    std::vector<double> count;   // n_g
-    std::vector<double> value;   // J's value on the group: h_m^2 / (its air nodes h_a^2)
-    std::vector<double> gain;    // P_g = gain_g S_g: gamma kappa_g / (1 + gamma kappa_g n_g)
+    std::vector<double> count;       // n_g
+    std::vector<double> value;       // J's value on the group: h_m^2 / (its air nodes h_a^2)
+    std::vector<double> gain;        // P_g = gain_g S_g: gamma kappa_g / (1 + gamma kappa_g n_g)
     std::vector<double> invResponse; // 1 / (1 - gain_g)
     std::vector<double> response;    // per head node (padded grid): 1 - gain of its group, or 1
     double alpha = 0, beta = 0, ratio = 0, gamma = 0;
     double wScale = 0;
-    bool fresh = false;          // no retry() since solveFree()
+    bool fresh = false; // no retry() since solveFree()
 
     // per group: the sum of w^{n-1} and of r, the exact pull for r, and what eq. (8) adds to
     // Psi_u (and takes from Psi_d) at each of its air nodes

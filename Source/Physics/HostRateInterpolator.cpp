@@ -9,9 +9,9 @@ namespace snaresim
 
 namespace
 {
-constexpr double kPassEdge = 0.45;   // of the simulated rate
-constexpr double kStopEdge = 0.5;    // of the simulated rate
-constexpr double kStop_dB = 100.0;   // the images' least attenuation
+constexpr double kPassEdge = 0.45; // of the simulated rate
+constexpr double kStopEdge = 0.5;  // of the simulated rate
+constexpr double kStop_dB = 100.0; // the images' least attenuation
 
 double besselI0(double x)
 {

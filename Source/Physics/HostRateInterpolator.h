@@ -36,10 +36,10 @@ public:
 
 private:
     int L;
-    int perPhase = 1; // taps of each phase (M)
-    int taps = 1;     // M L - 1, odd: a whole delay
-    std::vector<double> h;      // phase-major: phase p's taps h[p + m L] at [p M + m]
-    std::vector<double> ring;   // per channel, 2 M samples, the newest at pos and pos + M
+    int perPhase = 1;         // taps of each phase (M)
+    int taps = 1;             // M L - 1, odd: a whole delay
+    std::vector<double> h;    // phase-major: phase p's taps h[p + m L] at [p M + m]
+    std::vector<double> ring; // per channel, 2 M samples, the newest at pos and pos + M
     int pos = 0;
 };
 

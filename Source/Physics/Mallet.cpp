@@ -10,8 +10,7 @@ namespace
 constexpr double kLargestPatch_m = 0.02; // the contact-radius control's maximum
 }
 
-Mallet::Mallet(const MalletSpec& spec, const CircularGrid& headGrid, double timeStep)
-    : grid(headGrid), k(timeStep)
+Mallet::Mallet(const MalletSpec& spec, const CircularGrid& headGrid, double timeStep) : grid(headGrid), k(timeStep)
 {
     g.reserve(grid.distributionCapacity(std::max(spec.contactRadius_m, kLargestPatch_m)));
     setSpec(spec);

@@ -63,7 +63,8 @@ ContactSolveResult MalletContact::step()
         a(i) = mi.etaPrev;
         b(i) = mi.etaPrev - mi.etaNext;
         for (int j = i; j < m; ++j)
-            gamma(i, j) = gamma(j, i) = batter.forceGain() * overlap(mi.patch(), malletSet[(size_t) members[j]].patch(), h2, batter.responseScale());
+            gamma(i, j) = gamma(j, i) =
+                batter.forceGain() * overlap(mi.patch(), malletSet[(size_t) members[j]].patch(), h2, batter.responseScale());
         gamma(i, i) += kk / mi.mass();
     }
 

@@ -5,8 +5,8 @@
 // vector equation r + Gamma psi(r) + b = 0 with Gamma symmetric positive definite.
 // It owns the contact forces and the contact potential mu_t+ Phi_M (second term of eq. 37).
 
-#include "Membrane.h"
 #include "Mallet.h"
+#include "Membrane.h"
 
 #include <Eigen/Core>
 
@@ -17,8 +17,8 @@ namespace snaresim
 
 struct ContactSolveResult
 {
-    int iterations = 0;     // Newton iterations (0 when no mallet could touch)
-    bool fallback = false;  // Newton did not converge within its cap; bracketed fallback used
+    int iterations = 0;    // Newton iterations (0 when no mallet could touch)
+    bool fallback = false; // Newton did not converge within its cap; bracketed fallback used
 };
 
 class MalletContact
@@ -51,7 +51,7 @@ private:
     bool solveJoint(std::span<Mallet> mallets, int m, int& iterations);
     void solveGaussSeidel(std::span<Mallet> mallets, int m, int& iterations);
 
-    int members[maxMallets] {};   // indices of mallets that may touch this step
+    int members[maxMallets] {}; // indices of mallets that may touch this step
     Mat gamma;
     Vec a, b, r, f;
 

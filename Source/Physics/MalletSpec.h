@@ -10,9 +10,9 @@ namespace snaresim
 struct MalletSpec
 {
     double mass_kg = 0.0;
-    double stiffness = 0.0;             // kappa_M, N / m^alpha
-    double exponent = 0.0;              // alpha (1.5 Hertz ... 3 felt)
-    double contactRadius_m = 0.0;       // support of g_b (raised cosine); below h: bilinear point
+    double stiffness = 0.0;       // kappa_M, N / m^alpha
+    double exponent = 0.0;        // alpha (1.5 Hertz ... 3 felt)
+    double contactRadius_m = 0.0; // support of g_b (raised cosine); below h: bilinear point
 };
 
 } // namespace snaresim

@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 
-
 namespace snaresim
 {
 
@@ -21,8 +20,7 @@ double Membrane::gridSpacing(const MembraneSpec& s, double k, double reserve)
 }
 
 Membrane::Membrane(const MembraneSpec& s, double timeStep, double reserve)
-    : g(s.radius_m, gridSpacing(s, timeStep, reserve)), k(timeStep), kk(timeStep * timeStep), h(g.spacing()),
-      rho(s.density_kg_per_m2),
+    : g(s.radius_m, gridSpacing(s, timeStep, reserve)), k(timeStep), kk(timeStep * timeStep), h(g.spacing()), rho(s.density_kg_per_m2),
       maxT(s.gridTension_N_per_m > 0.0 ? s.gridTension_N_per_m : s.tension_N_per_m),
       maxSigma1(s.gridSigma1_m2_per_s >= 0.0 ? s.gridSigma1_m2_per_s : s.sigma1_m2_per_s)
 {
@@ -114,8 +112,10 @@ namespace
 void Membrane::setNextAt(const int* nodes, const double* values, int count)
 {
     if (momentsKept)
-        sumNext += single ? SNARESIM_ON_VECTOR_TARGET(scatterNodesMoments(fNext.data(), fX.data(), fY.data(), nodes, values, count, xSumNext, ySumNext))
-                          : SNARESIM_ON_VECTOR_TARGET(scatterNodesMoments(wNext.data(), dX.data(), dY.data(), nodes, values, count, xSumNext, ySumNext));
+        sumNext += single ? SNARESIM_ON_VECTOR_TARGET(
+                                scatterNodesMoments(fNext.data(), fX.data(), fY.data(), nodes, values, count, xSumNext, ySumNext))
+                          : SNARESIM_ON_VECTOR_TARGET(
+                                scatterNodesMoments(wNext.data(), dX.data(), dY.data(), nodes, values, count, xSumNext, ySumNext));
     else
         sumNext += single ? SNARESIM_ON_VECTOR_TARGET(scatterNodes(fNext.data(), nodes, values, count))
                           : SNARESIM_ON_VECTOR_TARGET(scatterNodes(wNext.data(), nodes, values, count));
@@ -139,7 +139,7 @@ void Membrane::computeFree(double p0, double px, double py)
 {
     const int n = g.width();
     const double gain = forceGain();
-    const double push = gain * p0; // eq. (22) with the pressure term, force density p
+    const double push = gain * p0;                           // eq. (22) with the pressure term, force density p
     const bool tilt = momentsKept || px != 0.0 || py != 0.0; // the moments come with the tilt's variant
     const bool field = fieldSet;
     fieldSet = false; // a block pressure acts on one step
@@ -157,10 +157,9 @@ void Membrane::computeFree(double p0, double px, double py)
                          (float) (gain * py), xSumNext, ySumNext);
         return;
     }
-    const auto update = tilt ? (field ? SNARESIM_ON_VECTOR_TARGET(updateRow<true, true>)
-                                      : SNARESIM_ON_VECTOR_TARGET(updateRow<true, false>))
-                             : (field ? SNARESIM_ON_VECTOR_TARGET(updateRow<false, true>)
-                                      : SNARESIM_ON_VECTOR_TARGET(updateRow<false, false>));
+    const auto update =
+        tilt ? (field ? SNARESIM_ON_VECTOR_TARGET(updateRow<true, true>) : SNARESIM_ON_VECTOR_TARGET(updateRow<true, false>))
+             : (field ? SNARESIM_ON_VECTOR_TARGET(updateRow<false, true>) : SNARESIM_ON_VECTOR_TARGET(updateRow<false, false>));
     double sum = 0.0, sx = 0.0, sy = 0.0;
     for (int iy = 1; iy < n - 1; ++iy)
     {
@@ -208,15 +207,14 @@ void Membrane::blockAccelerationsIn(int side, int ix0, int iy0, int columns, int
     const int n = g.width();
     const int count = ((columns + side - 1) / side) * ((rows + side - 1) / side);
     if (single)
-        SNARESIM_ON_VECTOR_TARGET(blockSecondDifferences<float>)(fNext.data(), fNow.data(), fPrev.data(), n, ix0, iy0,
-                                                                 columns, rows, side, accScratch.data(), out);
+        SNARESIM_ON_VECTOR_TARGET(blockSecondDifferences<float>)
+        (fNext.data(), fNow.data(), fPrev.data(), n, ix0, iy0, columns, rows, side, accScratch.data(), out);
     else
-        SNARESIM_ON_VECTOR_TARGET(blockSecondDifferences<double>)(wNext.data(), wNow.data(), wPrev.data(), n, ix0, iy0,
-                                                                  columns, rows, side, accScratch.data(), out);
+        SNARESIM_ON_VECTOR_TARGET(blockSecondDifferences<double>)
+        (wNext.data(), wNow.data(), wPrev.data(), n, ix0, iy0, columns, rows, side, accScratch.data(), out);
     for (int b = 0; b < count; ++b)
         out[b] *= h * h;
 }
-
 
 void Membrane::prepareBlocks(int side)
 {
@@ -258,14 +256,14 @@ void Membrane::expandBlockPressure()
         const size_t o = (size_t) first * (size_t) n;
         if (single)
         {
-            SNARESIM_ON_VECTOR_TARGET(expandRow<float>)(n, columnBlock.data(), perBlock + (size_t) by * (size_t) blocks, gain,
-                                                       fField.data() + o);
+            SNARESIM_ON_VECTOR_TARGET(expandRow<float>)
+            (n, columnBlock.data(), perBlock + (size_t) by * (size_t) blocks, gain, fField.data() + o);
             SNARESIM_ON_VECTOR_TARGET(copyRows(fField.data() + o, n, rows));
         }
         else
         {
-            SNARESIM_ON_VECTOR_TARGET(expandRow<double>)(n, columnBlock.data(), perBlock + (size_t) by * (size_t) blocks, gain,
-                                                        dField.data() + o);
+            SNARESIM_ON_VECTOR_TARGET(expandRow<double>)
+            (n, columnBlock.data(), perBlock + (size_t) by * (size_t) blocks, gain, dField.data() + o);
             SNARESIM_ON_VECTOR_TARGET(copyRows(dField.data() + o, n, rows));
         }
     }

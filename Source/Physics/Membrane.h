@@ -131,7 +131,7 @@ public:
 
     // The state arrays themselves, double precision only (empty otherwise): for the air box's
     // embedding (HeadEmbedding), which updates w^{n+1} with the air.
-    const std::vector<double>& nextDisplacement() const { return wNext; } // w^{n+1}
+    const std::vector<double>& nextDisplacement() const { return wNext; }     // w^{n+1}
     const std::vector<double>& previousDisplacement() const { return wPrev; } // w^{n-1}
     bool isFinite() const;
 
@@ -155,11 +155,11 @@ private:
     double maxT, maxSigma1;
     double q = 1;
     double a0 = 0, a1 = 0, b0 = 0, b1 = 0; // stencil coefficients
-    float r = 0, cl = 0, cs = 0;            // the same as an increment, for the float state (computeFree)
-    std::vector<int> rowBegin, rowEnd;      // columns holding interior nodes, per row
-    double sumNext = 0.0;                   // sum(w^{n+1})
-    bool momentsKept = false;               // keepMoments
-    double xSumNext = 0.0, ySumNext = 0.0;  // sum(x w^{n+1}), sum(y w^{n+1}), when kept
+    float r = 0, cl = 0, cs = 0;           // the same as an increment, for the float state (computeFree)
+    std::vector<int> rowBegin, rowEnd;     // columns holding interior nodes, per row
+    double sumNext = 0.0;                  // sum(w^{n+1})
+    bool momentsKept = false;              // keepMoments
+    double xSumNext = 0.0, ySumNext = 0.0; // sum(x w^{n+1}), sum(y w^{n+1}), when kept
     // w^{n+1} at a node moved by dw: the sums kept follow
     void moved(int node, double dw)
     {
@@ -170,13 +170,13 @@ private:
             ySumNext += (single ? (double) fY[(size_t) node] : dY[(size_t) node]) * dw;
         }
     }
-    const double* response = nullptr;       // per-node response to a force (setResponse), or 1
+    const double* response = nullptr; // per-node response to a force (setResponse), or 1
     bool single = false;
-    std::vector<double> wNext, wNow, wPrev; // double precision, else empty
-    std::vector<float> fNext, fNow, fPrev;  // single precision, else empty
-    std::vector<float> fMask;               // single precision: the grid's mask
-    std::vector<float> fX, fY;              // single precision: x and y times the mask
-    std::vector<double> dX, dY;             // double precision: the same
+    std::vector<double> wNext, wNow, wPrev;  // double precision, else empty
+    std::vector<float> fNext, fNow, fPrev;   // single precision, else empty
+    std::vector<float> fMask;                // single precision: the grid's mask
+    std::vector<float> fX, fY;               // single precision: x and y times the mask
+    std::vector<double> dX, dY;              // double precision: the same
     mutable std::vector<double> dRowScratch; // a band of rows summed, for blockSumsNext
     mutable std::vector<double> accScratch;  // a row, for blockAccelerationsIn
     int blockSide = 0;                       // prepareBlocks: the side of addBlockPressure's blocks

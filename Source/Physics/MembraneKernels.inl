@@ -6,9 +6,9 @@
 // returns the sum of out, and with Tilt sets along to the sum of xs[m] out[m] (the row's first
 // moment in x).
 template <bool Tilt, bool Field>
-double updateRow(double* __restrict out, const double* __restrict w, const double* __restrict wp,
-                 const double* __restrict field, const double* __restrict xs, int n, int count, double c0,
-                 double c1, double d0, double d1, double push, double px, double& along)
+double updateRow(double* __restrict out, const double* __restrict w, const double* __restrict wp, const double* __restrict field,
+                 const double* __restrict xs, int n, int count, double c0, double c1, double d0, double d1, double push, double px,
+                 double& along)
 {
     double sum = 0.0, moment = 0.0; // summed on the way (vector lanes)
 #pragma omp simd reduction(+ : sum, moment)
@@ -42,10 +42,9 @@ double updateRow(double* __restrict out, const double* __restrict w, const doubl
 // With Tilt, a pressure px x + py y is added (xs, ys: x and y times the mask), and sx, sy are set
 // to sum(xs out), sum(ys out) in double; with Field, a push per node (field, times the mask).
 template <bool Tilt, bool Field>
-double updateGridFloat(float* __restrict out, const float* __restrict w, const float* __restrict wp,
-                       const float* __restrict mask, const float* __restrict xs,
-                       const float* __restrict ys, const float* __restrict field, int n, int count,
-                       float r, float cl, float cs, float push, float px, float py, double& sx, double& sy)
+double updateGridFloat(float* __restrict out, const float* __restrict w, const float* __restrict wp, const float* __restrict mask,
+                       const float* __restrict xs, const float* __restrict ys, const float* __restrict field, int n, int count, float r,
+                       float cl, float cs, float push, float px, float py, double& sx, double& sy)
 {
     double sum = 0.0, ax = 0.0, ay = 0.0; // summed on the way, in double (vector lanes: the order is not the rows')
 #pragma omp simd reduction(+ : sum, ax, ay)
@@ -59,8 +58,7 @@ double updateGridFloat(float* __restrict out, const float* __restrict w, const f
             p += field[m];
         float next;
         if constexpr (Tilt)
-            next = mask[m] * (c + (r * v + cl * (nb - 4.0f * c) + cs * ((nb - nbp) - 4.0f * v) + p))
-                 + (px * xs[m] + py * ys[m]);
+            next = mask[m] * (c + (r * v + cl * (nb - 4.0f * c) + cs * ((nb - nbp) - 4.0f * v) + p)) + (px * xs[m] + py * ys[m]);
         else
             next = mask[m] * (c + (r * v + cl * (nb - 4.0f * c) + cs * ((nb - nbp) - 4.0f * v) + p));
         out[m] = next;
@@ -77,8 +75,7 @@ double updateGridFloat(float* __restrict out, const float* __restrict w, const f
 }
 // sum(xs w), sum(ys w) over count nodes, in double (vector lanes).
 template <class Real>
-void firstMoments(const Real* __restrict w, const Real* __restrict xs, const Real* __restrict ys, int count,
-                  double& sx, double& sy)
+void firstMoments(const Real* __restrict w, const Real* __restrict xs, const Real* __restrict ys, int count, double& sx, double& sy)
 {
     double ax = 0.0, ay = 0.0;
 #pragma omp simd reduction(+ : ax, ay)
@@ -177,9 +174,8 @@ void blockSums(const Real* w, int n, int side, double* acc, double* out)
 // The rectangle's second differences in time summed over blocks, in double: a band of side
 // rows into acc (vectorised along the rows), then its runs.
 template <class Real>
-void blockSecondDifferences(const Real* __restrict next, const Real* __restrict now, const Real* __restrict prev,
-                            int n, int ix0, int iy0, int columns, int rows, int side,
-                            double* __restrict acc, double* __restrict out)
+void blockSecondDifferences(const Real* __restrict next, const Real* __restrict now, const Real* __restrict prev, int n, int ix0, int iy0,
+                            int columns, int rows, int side, double* __restrict acc, double* __restrict out)
 {
     if (side == 1) // a block a node
     {
@@ -213,8 +209,8 @@ void blockSecondDifferences(const Real* __restrict next, const Real* __restrict 
 }
 // The same, also adding the changes of sum(xs w), sum(ys w) to dx, dy.
 template <class Real>
-double scatterNodesMoments(Real* __restrict w, const Real* __restrict xs, const Real* __restrict ys,
-                           const int* __restrict nodes, const double* __restrict values, int count, double& dx, double& dy)
+double scatterNodesMoments(Real* __restrict w, const Real* __restrict xs, const Real* __restrict ys, const int* __restrict nodes,
+                           const double* __restrict values, int count, double& dx, double& dy)
 {
     double change = 0.0, cx = 0.0, cy = 0.0;
 #pragma omp simd reduction(+ : change, cx, cy)
@@ -255,8 +251,7 @@ double scatterNodes(Real* __restrict w, const int* __restrict nodes, const doubl
 }
 // out[ix] = scale * perBlock[block[ix]] along a row (a band's blocks, node by node).
 template <class Real>
-void expandRow(int n, const int* __restrict block, const double* __restrict perBlock, double scale,
-               Real* __restrict out)
+void expandRow(int n, const int* __restrict block, const double* __restrict perBlock, double scale, Real* __restrict out)
 {
 #pragma omp simd
     for (int ix = 0; ix < n; ++ix)

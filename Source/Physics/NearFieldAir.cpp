@@ -12,7 +12,10 @@ namespace snaresim
 
 namespace
 {
-bool loads(const NearFieldSpec& c) { return c.outside.enabled && c.outside.nearField && c.cavity.model != AirModel::airbox && c.outside.nearFieldUpTo_per_m > 0.0; }
+bool loads(const NearFieldSpec& c)
+{
+    return c.outside.enabled && c.outside.nearField && c.cavity.model != AirModel::airbox && c.outside.nearFieldUpTo_per_m > 0.0;
+}
 } // namespace
 
 std::vector<NearFieldShape> NearFieldAir::shapes(const NearFieldSpec& c)

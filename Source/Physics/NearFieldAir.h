@@ -45,10 +45,10 @@ namespace snaresim
 
 struct NearFieldShape
 {
-    int head = 0;        // 0 the batter, 1 the carry head
-    int m = 2, n = 1;    // azimuthal order, radial index (1: the first zero of J_m)
-    bool sine = false;   // sin(m theta), else cos
-    double zero = 0.0;   // j_mn
+    int head = 0;      // 0 the batter, 1 the carry head
+    int m = 2, n = 1;  // azimuthal order, radial index (1: the first zero of J_m)
+    bool sine = false; // sin(m theta), else cos
+    double zero = 0.0; // j_mn
 };
 
 class NearFieldAir
@@ -76,7 +76,10 @@ public:
     // continuum's, which the channel is set for) and the channel's corner sqrt(K / M).
     double arealMass(int i) const { return mu[(size_t) i]; }
     double modeFrequency_Hz(int i) const { return omega[(size_t) i] / (2.0 * std::numbers::pi); }
-    double corner_Hz(int i) const { return K[(size_t) i] > 0.0 ? std::sqrt(K[(size_t) i] / M[(size_t) i]) / (2.0 * std::numbers::pi) : 0.0; }
+    double corner_Hz(int i) const
+    {
+        return K[(size_t) i] > 0.0 ? std::sqrt(K[(size_t) i] / M[(size_t) i]) / (2.0 * std::numbers::pi) : 0.0;
+    }
 
     // Shape i's norms on its head's grid (m^2): int of the cells' means squared and of the shape
     // squared, node by node. Sets the channel; NearFieldCoupling calls it once for every shape,
@@ -102,9 +105,9 @@ private:
 
     std::vector<NearFieldShape> list;
     double k;
-    double budget = 0.0;                       // nearFieldReserve
-    double damping = 0.0;                      // nearFieldDamping
-    bool inside = false;                       // the inner share counts (the uniform cavity)
+    double budget = 0.0;  // nearFieldReserve
+    double damping = 0.0; // nearFieldDamping
+    bool inside = false;  // the inner share counts (the uniform cavity)
     std::array<double, 2> radius {}, density {}, tension {};
     double airDensity = 0.0, depth = 0.0;
     std::vector<double> mu, omega, cellArea, headArea; // per shape

@@ -98,8 +98,7 @@ NearFieldCoupling::Face NearFieldCoupling::makeFace(Membrane& head, int which, d
 
 NearFieldCoupling::NearFieldCoupling(Membrane& batter, Membrane& carry, NearFieldAir& nearField, double cellSize, double coarseSize)
     : air(nearField), faces { makeFace(batter, 0, cellSize, coarseSize), makeFace(carry, 1, cellSize, coarseSize) }
-{
-}
+{}
 
 void NearFieldCoupling::applyPressures() noexcept
 {

@@ -48,10 +48,10 @@ private:
     {
         Membrane* head;
         HeadCells cells;
-        int first = 0, count = 0;          // the head's shapes in the air's list
-        int coarse = 0;                    // coarse cells
-        std::vector<int> coarseOf;         // fine cell -> coarse cell (the pressures: faster than the runs below)
-        std::vector<int> firstBlock;       // coarse cell c's blocks: fineBlocks[firstBlock[c] .. firstBlock[c + 1])
+        int first = 0, count = 0;    // the head's shapes in the air's list
+        int coarse = 0;              // coarse cells
+        std::vector<int> coarseOf;   // fine cell -> coarse cell (the pressures: faster than the runs below)
+        std::vector<int> firstBlock; // coarse cell c's blocks: fineBlocks[firstBlock[c] .. firstBlock[c + 1])
         std::vector<int> fineBlocks;
         std::vector<float> shape;          // the shapes' coarse cell means, shape-major (CellShapes.h)
         std::vector<double> blockSum;      // Membrane::blockSumsNext

@@ -57,8 +57,8 @@ public:
     // K_c (Pa per unit of q_c), 0 for an inactive drum.
     static Values stiffnesses(const OutsideAirSpec& spec, const MembraneSpec& batter, const MembraneSpec& carry, double timeStep_s);
     // Share of a head's kinetic energy the channels' explicit coupling needs (0 when off).
-    static double kineticReserve(const OutsideAirSpec& spec, const MembraneSpec& batter, const MembraneSpec& carry,
-                                 double timeStep_s, bool ofBatter);
+    static double kineticReserve(const OutsideAirSpec& spec, const MembraneSpec& batter, const MembraneSpec& carry, double timeStep_s,
+                                 bool ofBatter);
 
     // Step n's port updates (z^{n+1}, v^{n+1/2}) and the pressures P^n on the channels.
     void computeFree();

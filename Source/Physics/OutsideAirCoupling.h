@@ -22,7 +22,8 @@ class OutsideAirCoupling
 {
 public:
     // The heads keep their first moments for it (Membrane::keepMoments): no pass of its own.
-    OutsideAirCoupling(Membrane& batterHead, Membrane& carryHead, OutsideAir& outsideAir) : batter(batterHead), carry(carryHead), air(outsideAir)
+    OutsideAirCoupling(Membrane& batterHead, Membrane& carryHead, OutsideAir& outsideAir)
+        : batter(batterHead), carry(carryHead), air(outsideAir)
     {
         if (air.active())
         {

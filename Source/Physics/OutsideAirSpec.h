@@ -16,23 +16,23 @@ struct RadiationChannelSpec
 
 struct OutsideAirSpec
 {
-    bool enabled = false;                  // from the schema
+    bool enabled = false; // from the schema
     // scripts/calibrate_outside_air.py against the 1.4 m and 1.8 m air boxes (docs/MODEL.md)
-    RadiationChannelSpec monopole { 1.311, 1.418e4 };  // V_b - V_c: the volume pushed out
-    RadiationChannelSpec dipole { 1.294, 6.579e4 };    // V_b + V_c: the volume carried through
-    RadiationChannelSpec tiltSum { 251.8, 3.185e7 };   // X_b + X_c: both heads' first moments together
-    RadiationChannelSpec tiltDiff { 130.2, 4.488e7 };  // X_b - X_c: against each other
-    double cornerLimit_Hz = 3000.0;        // the compliance 1/K behind each channel: sqrt(K/M) at most this
-    double reserve = 0.05;                 // and at most this share of the lighter head's kinetic energy
+    RadiationChannelSpec monopole { 1.311, 1.418e4 }; // V_b - V_c: the volume pushed out
+    RadiationChannelSpec dipole { 1.294, 6.579e4 };   // V_b + V_c: the volume carried through
+    RadiationChannelSpec tiltSum { 251.8, 3.185e7 };  // X_b + X_c: both heads' first moments together
+    RadiationChannelSpec tiltDiff { 130.2, 4.488e7 }; // X_b - X_c: against each other
+    double cornerLimit_Hz = 3000.0;                   // the compliance 1/K behind each channel: sqrt(K/M) at most this
+    double reserve = 0.05;                            // and at most this share of the lighter head's kinetic energy
     // The near field's mass on the heads' modes above (0,1) and (1,1) (NearFieldAir.h): those of
     // wavenumber j_mn / R up to this (rad/m; 0: none; 75: four 2 cm cells a wavelength), on at
     // most this share of each head's kinetic energy, with this share of the largest damper the
     // explicit coupling allows across each channel's compliance (0: lossless).
-    bool nearField = true;                 // the near field with the channels (the schema's near_field)
+    bool nearField = true; // the near field with the channels (the schema's near_field)
     double nearFieldUpTo_per_m = 60.0;
     double nearFieldReserve = 0.08;
     double nearFieldDamping = 1.0;
-    double nearFieldCellSize_m = 0.04;     // its shapes' cells: whole groups of the microphones' cells
+    double nearFieldCellSize_m = 0.04; // its shapes' cells: whole groups of the microphones' cells
 };
 
 } // namespace snaresim

@@ -246,9 +246,8 @@ void PressureMicrophones::listen(const Membrane& batter, const Membrane& carry, 
             membranes[hi]->blockSumsNext(h.side, h.blockSum.data()); // volumes / h^2
             blockSum = h.blockSum.data();
         }
-        h.accel[(size_t) h.cells] = SNARESIM_ON_VECTOR_TARGET(cellAccelerations)(h.cells, h.block.data(), blockSum,
-                                                                                 h.sign * h.nodeArea, inverseKk, h.vNow.data(),
-                                                                                 h.vPrev.data(), h.accel.data());
+        h.accel[(size_t) h.cells] = SNARESIM_ON_VECTOR_TARGET(cellAccelerations)(h.cells, h.block.data(), blockSum, h.sign * h.nodeArea,
+                                                                                 inverseKk, h.vNow.data(), h.vPrev.data(), h.accel.data());
     }
     const size_t mask = (size_t) rows - 1;
     for (int m = 0; m < numMics; ++m)
@@ -266,8 +265,9 @@ void PressureMicrophones::listen(const Membrane& batter, const Membrane& carry, 
             for (int i = 0; i < l.nearCells; ++i)
                 A[f.cells + 1 + i] = (float) (fine[i] * inverseKk);
         }
-        SNARESIM_ON_VECTOR_TARGET(sumTapRuns<kLanes>)(l.delays, l.runEnd.data(), l.cell.data(), l.now.data(), l.next.data(), A,
-                                                      l.direct.data(), (size_t) pos + (size_t) l.firstDelay, mask);
+        SNARESIM_ON_VECTOR_TARGET(sumTapRuns<kLanes>)
+        (l.delays, l.runEnd.data(), l.cell.data(), l.now.data(), l.next.data(), A, l.direct.data(), (size_t) pos + (size_t) l.firstDelay,
+         mask);
         push(l.around, l.facingWhole, f.accel[(size_t) f.cells]);
         const Head& o = heads[(size_t) (1 - l.facing)];
         push(l.around, l.otherWhole, o.accel[(size_t) o.cells]);

@@ -69,13 +69,13 @@ public:
 private:
     struct Head
     {
-        double z = 0.0;          // plane of the head
-        double sign = 1.0;       // outward normal: +1 batter (up), -1 carry (down)
-        int side = 1;            // cell side in grid nodes
-        double width_m = 0.0;    // and in metres
-        double nodeArea = 0.0;   // h^2 of the head's grid (a block sum times it is a volume)
-        int cells = 0;           // blocks holding interior nodes
-        std::vector<int> block;  // cell -> block
+        double z = 0.0;             // plane of the head
+        double sign = 1.0;          // outward normal: +1 batter (up), -1 carry (down)
+        int side = 1;               // cell side in grid nodes
+        double width_m = 0.0;       // and in metres
+        double nodeArea = 0.0;      // h^2 of the head's grid (a block sum times it is a volume)
+        int cells = 0;              // blocks holding interior nodes
+        std::vector<int> block;     // cell -> block
         std::vector<double> cx, cy; // cell centres (m)
         const CircularGrid* grid = nullptr;
         int blocks = 0;                  // blocks per row of the grid
@@ -101,19 +101,19 @@ private:
     struct Listener
     {
         int facing = 0;
-        std::vector<int> cell;            // taps: their sources, by delay
-        std::vector<float> now, next;     // gain (1 - frac), gain frac: to the delay and the one after
-        std::vector<int> runEnd;          // per delay from firstDelay: end of its run of taps
+        std::vector<int> cell;        // taps: their sources, by delay
+        std::vector<float> now, next; // gain (1 - frac), gain frac: to the delay and the one after
+        std::vector<int> runEnd;      // per delay from firstDelay: end of its run of taps
         int firstDelay = 0, delays = 0;
         // The cells close to the microphone, heard in fine cells (a coarse cell's sum would alias
         // the head's short waves into ones that radiate): a rectangle of the grid from node
         // (nearX, nearY), nearColumns x nearRows nodes, in fine cells.
         int nearX = 0, nearY = 0, nearColumns = 0, nearRows = 0, nearCells = 0;
-        std::vector<float> sources;  // the facing head's cells' and whole's A, then the fine cells', then 0
-        std::vector<double> fine;    // the fine cells' A, as the head gives them
+        std::vector<float> sources;        // the facing head's cells' and whole's A, then the fine cells', then 0
+        std::vector<double> fine;          // the fine cells' A, as the head gives them
         Tap facingWhole {}, otherWhole {}; // the low-passed whole-head terms
-        std::vector<float> direct;  // ring: the direct sound ahead, kLanes partial sums a sample
-        std::vector<double> around; // ring: the low-pass's input, ahead
+        std::vector<float> direct;         // ring: the direct sound ahead, kLanes partial sums a sample
+        std::vector<double> around;        // ring: the low-pass's input, ahead
         double lowPass = 0.0;
         // scratch of place() (no allocation there)
         std::vector<Tap> taps;

@@ -6,9 +6,8 @@
 // sample). Each run holds whole vectors of Lanes taps (padded): a vector at a time (gathers),
 // no sum across the lanes here.
 template <int Lanes>
-void sumTapRuns(int delays, const int* __restrict runEnd, const int* __restrict cell,
-                const float* __restrict now, const float* __restrict next,
-                const float* __restrict A, float* __restrict ring, size_t slot, size_t mask)
+void sumTapRuns(int delays, const int* __restrict runEnd, const int* __restrict cell, const float* __restrict now,
+                const float* __restrict next, const float* __restrict A, float* __restrict ring, size_t slot, size_t mask)
 {
     int t = 0;
     for (int d = 0; d < delays; ++d, ++slot)
@@ -38,9 +37,8 @@ void sumTapRuns(int delays, const int* __restrict runEnd, const int* __restrict 
 // The cells' A^n = (V^{n+1} - 2 V^n + V^{n-1}) / k^2 from their blocks' sums at n+1 (V = scale
 // times the sum: h^2 and the outward sign), the volumes moved on a step; returns the whole
 // head's A^n.
-double cellAccelerations(int cells, const int* __restrict block, const double* __restrict blockSum,
-                         double scale, double inverseKk, double* __restrict vNow,
-                         double* __restrict vPrev, double* __restrict accel)
+double cellAccelerations(int cells, const int* __restrict block, const double* __restrict blockSum, double scale, double inverseKk,
+                         double* __restrict vNow, double* __restrict vPrev, double* __restrict accel)
 {
     double whole = 0.0;
 #pragma omp simd reduction(+ : whole)

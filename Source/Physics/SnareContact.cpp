@@ -87,8 +87,8 @@ SnareContact::SnareContact(const SnareSpec& spec, SnareWires& wires, Membrane& c
     wireInterior = M - 1;
     for (auto* v : { &groupW0, &groupCc, &groupW })
         v->assign(groupNode.size(), 0.0);
-    for (auto* v : { &gq, &alphaQ, &betaQ, &uFree, &pointW0, &pointCc, &pointS, &pointW, &solveXiPrev, &solveXiNow,
-                     &solveXiNext, &solvePsi, &solveDropped })
+    for (auto* v : { &gq, &alphaQ, &betaQ, &uFree, &pointW0, &pointCc, &pointS, &pointW, &solveXiPrev, &solveXiNow, &solveXiNext, &solvePsi,
+                     &solveDropped })
         v->assign(numPoints, 0.0);
     for (auto* v : { &solveGroupW0, &solveGroupCc, &solveGroupS, &solveGroupW })
         v->assign(groupNode.size(), 0.0);
@@ -160,8 +160,8 @@ void SnareContact::coefficients(int count, const int* wireNode, const double* xi
     // f = alpha - beta S with alpha = (A + B xi*) / (1 + gammaS B), beta = cc h_s B / (1 + gammaS B).
     if (quarterPower)
     {
-        SNARESIM_ON_VECTOR_TARGET(hertzCoefficients)(count, wireNode, xiBefore, u, psiBefore, W0, cc, hs, psiScale, gammaS,
-                                                     gq.data(), alphaQ.data(), betaQ.data(), uFree.data());
+        SNARESIM_ON_VECTOR_TARGET(hertzCoefficients)
+        (count, wireNode, xiBefore, u, psiBefore, W0, cc, hs, psiScale, gammaS, gq.data(), alphaQ.data(), betaQ.data(), uFree.data());
         return;
     }
     for (int t = 0; t < count; ++t)
@@ -206,10 +206,9 @@ SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wire
     // with the ends), are solved; the others keep xi* and their free node, as their solve would
     // leave them. The work is at most that of every point touching.
     for (const SizeClass& c : classes)
-        SNARESIM_ON_VECTOR_TARGET(predictClass)(c.size, c.groupCount, pointWireNode.data() + c.pointBegin, u,
-                                                groupW0.data() + c.groupBegin, xiPrev.data() + c.pointBegin,
-                                                psiQ.data() + c.pointBegin, xiNext.data() + c.pointBegin,
-                                                groupReach.data() + c.groupBegin);
+        SNARESIM_ON_VECTOR_TARGET(predictClass)
+        (c.size, c.groupCount, pointWireNode.data() + c.pointBegin, u, groupW0.data() + c.groupBegin, xiPrev.data() + c.pointBegin,
+         psiQ.data() + c.pointBegin, xiNext.data() + c.pointBegin, groupReach.data() + c.groupBegin);
     for (int g : endGroups)
         groupReach[(size_t) g] = 1.0;
     int solvedGroups = 0, solvedPoints = 0;
@@ -218,7 +217,7 @@ SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wire
     {
         const int groupBegin = solvedGroups;
         const int count = SNARESIM_ON_VECTOR_TARGET(listReaching)(c.groupCount, groupReach.data() + c.groupBegin, c.groupBegin,
-                                                                 activeGroups.data() + groupBegin);
+                                                                  activeGroups.data() + groupBegin);
         solvedGroups += count;
         if (count == 0)
             continue;
@@ -274,9 +273,9 @@ SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wire
     // head's running sum of w^{n+1} (Membrane::setNextAt) adds the same changes in the same
     // order whichever groups were solved.
     for (const SizeClass& c : layout)
-        SNARESIM_ON_VECTOR_TARGET(solveClass)(c.size, c.groupCount, alphaQ.data() + c.pointBegin, betaQ.data() + c.pointBegin,
-                                              W0 + c.groupBegin, cc + c.groupBegin, hs, solveGroupS.data() + c.groupBegin,
-                                              W + c.groupBegin);
+        SNARESIM_ON_VECTOR_TARGET(solveClass)
+        (c.size, c.groupCount, alphaQ.data() + c.pointBegin, betaQ.data() + c.pointBegin, W0 + c.groupBegin, cc + c.groupBegin, hs,
+         solveGroupS.data() + c.groupBegin, W + c.groupBegin);
     if (! whole)
     {
         std::memcpy(groupW.data(), groupW0.data(), sizeof(double) * (size_t) numGroups);
@@ -290,8 +289,9 @@ SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wire
     // Per point: the force, the wire, the gap and psi at n+1/2, put back in place.
     expandToPoints(layout, solveGroupS.data(), pointS.data());
     expandToPoints(layout, W, pointW.data());
-    SNARESIM_ON_VECTOR_TARGET(finishPoints)(m, alphaQ.data(), betaQ.data(), gq.data(), pointS.data(), pointW.data(), gammaS, before,
-                                            now, uFree.data(), xiSolved, psiSolved, solveDropped.data());
+    SNARESIM_ON_VECTOR_TARGET(finishPoints)
+    (m, alphaQ.data(), betaQ.data(), gq.data(), pointS.data(), pointW.data(), gammaS, before, now, uFree.data(), xiSolved, psiSolved,
+     solveDropped.data());
     SNARESIM_ON_VECTOR_TARGET(scatterPoints)(m, wireNode, uFree.data(), u);
     if (! whole)
     {
@@ -302,8 +302,8 @@ SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wire
     // The points left out are apart (xi* <= 0) and hold no psi: the deepest gap, the points
     // touching and psi's resets are among those solved.
     SnareSolveResult result;
-    const double sumRemoved = SNARESIM_ON_VECTOR_TARGET(summarise)(m, xiSolved, solveDropped.data(),
-                                                                   result.maxPenetration_m, result.contacts);
+    const double sumRemoved =
+        SNARESIM_ON_VECTOR_TARGET(summarise)(m, xiSolved, solveDropped.data(), result.maxPenetration_m, result.contacts);
     lastCorrection = 0.5 * hs * sumRemoved;
     return result;
 }
@@ -345,7 +345,7 @@ SnareSolveResult SnareContact::stepNewton(Membrane& carry, SnareWires& wires)
 void SnareContact::solveGroup(int g, Membrane& carry, SnareWires& wires, SnareSolveResult& result)
 {
     const int node = groupNode[(size_t) g];
-    const double gammaS = wires.interiorGain();       // u^{n+1} per unit force density (N/m)
+    const double gammaS = wires.interiorGain(); // u^{n+1} per unit force density (N/m)
     double* u = wires.uNext.data();
     double W0 = 0.0, cc = 0.0;
     const double h = carry.grid().spacing();
@@ -596,10 +596,7 @@ double SnareContact::quadratisedEnergy() const
     return 0.5 * hs * e;
 }
 
-double SnareContact::gapAt(int wire, int l) const
-{
-    return xiNow[(size_t) pointOfWireNode[(size_t) (wire * wireInterior + l - 1)]];
-}
+double SnareContact::gapAt(int wire, int l) const { return xiNow[(size_t) pointOfWireNode[(size_t) (wire * wireInterior + l - 1)]]; }
 
 void SnareContact::clear()
 {

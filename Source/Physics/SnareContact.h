@@ -52,9 +52,9 @@ namespace snaresim
 
 struct SnareSolveResult
 {
-    int iterations = 0;     // largest Newton iteration count over the node groups this step
-    int contacts = 0;       // contact points touching the head at n+1
-    bool fallback = false;  // some group needed the bracketed fallback
+    int iterations = 0;            // largest Newton iteration count over the node groups this step
+    int contacts = 0;              // contact points touching the head at n+1
+    bool fallback = false;         // some group needed the bracketed fallback
     double maxPenetration_m = 0.0; // largest xi^{n+1}, 0 when apart
 };
 
@@ -62,7 +62,7 @@ class SnareContact
 {
 public:
     static constexpr int maxNewtonIterations = 50;
-    static constexpr double tolerance = 1.0e-14; // Newton step / (|r| + |a| + |b|)
+    static constexpr double tolerance = 1.0e-14;      // Newton step / (|r| + |a| + |b|)
     static constexpr double groupTolerance = 1.0e-12; // on the total force of a node group
 
     // The wires and the carry head it couples (both must outlive it).
@@ -83,7 +83,7 @@ public:
     // Energy the quadratised scheme removed in the last step by resetting psi of separated points
     // (0 with Newton): its only loss.
     double stepLoss() const { return lastCorrection; }
-    double maxPenetration() const; // largest xi^{n+1} (m), 0 when apart
+    double maxPenetration() const;    // largest xi^{n+1} (m), 0 when apart
     double quadratisedEnergy() const; // h_s sum psi^2 / 2
     int numPoints() const { return (int) pointWireNode.size(); }
     // xi = u - w_c per contact point at the latest completed step (after Drum::step), in the
@@ -158,11 +158,11 @@ private:
     };
     std::vector<SizeClass> classes;
     std::vector<double> xiNext, xiNow, xiPrev;
-    std::vector<double> rLast; // last step's root per point (NaN when it was not solved): Newton's start
-    std::vector<double> psiQ;  // quadratised: psi at n+1/2 (after step) / n-1/2 (before), per point
-    std::vector<double> trialPsi; // psiQ before the step (saveTrial)
-    std::vector<int> pointOfWireNode;        // wire i, interior node l -> point (i * (M - 1) + l - 1)
-    int wireInterior = 0;                    // interior nodes per wire, M - 1
+    std::vector<double> rLast;        // last step's root per point (NaN when it was not solved): Newton's start
+    std::vector<double> psiQ;         // quadratised: psi at n+1/2 (after step) / n-1/2 (before), per point
+    std::vector<double> trialPsi;     // psiQ before the step (saveTrial)
+    std::vector<int> pointOfWireNode; // wire i, interior node l -> point (i * (M - 1) + l - 1)
+    int wireInterior = 0;             // interior nodes per wire, M - 1
     // Newton: per-group scratch (sized for the largest group)
     std::vector<int> active;
     std::vector<double> a, b, r, psi, dpsi, phiA;
@@ -182,8 +182,8 @@ private:
     int lastSolvedPoints = 0;
     static void expandToPoints(const std::vector<SizeClass>& layout, const double* perGroup, double* perPoint);
     // alpha, beta, g and u* of `count` points into alphaQ, betaQ, gq and uFree
-    void coefficients(int count, const int* wireNode, const double* xiBefore, const double* psiBefore, const double* W0,
-                      const double* cc, double gammaS, const double* u);
+    void coefficients(int count, const int* wireNode, const double* xiBefore, const double* psiBefore, const double* W0, const double* cc,
+                      double gammaS, const double* u);
 
     SnareWires& snares;
     Membrane& head; // the carry head

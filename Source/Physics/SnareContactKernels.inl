@@ -8,11 +8,9 @@
 // xi^{n-1} to xi*. While both touch, with x, y their fourth roots, it is
 // (y^5 - x^5) / (y^4 - x^4) = (x^4 + x^3 y + x^2 y^2 + x y^3 + y^4) / ((x + y)(x^2 + y^2)):
 // no difference of near values, down to the tangent (5/4) x when they meet.
-void hertzCoefficients(int count, const int* __restrict wireNode, const double* __restrict xiPrev,
-                       const double* __restrict u, const double* __restrict psi,
-                       const double* __restrict W0, const double* __restrict cc, double hs,
-                       double psiScale, double gammaS, double* __restrict gq,
-                       double* __restrict alpha, double* __restrict beta, double* __restrict uFree)
+void hertzCoefficients(int count, const int* __restrict wireNode, const double* __restrict xiPrev, const double* __restrict u,
+                       const double* __restrict psi, const double* __restrict W0, const double* __restrict cc, double hs, double psiScale,
+                       double gammaS, double* __restrict gq, double* __restrict alpha, double* __restrict beta, double* __restrict uFree)
 {
     for (int k = 0; k < count; ++k)
     {
@@ -47,8 +45,7 @@ void scatterPoints(int count, const int* __restrict index, const double* __restr
         to[index[t]] = from[t];
 }
 // out[t] = scale * from[index[t]] (a gather).
-void gatherScaled(int count, const int* __restrict index, const double* __restrict from, double scale,
-                  double* __restrict out)
+void gatherScaled(int count, const int* __restrict index, const double* __restrict from, double scale, double* __restrict out)
 {
 #pragma omp simd
     for (int t = 0; t < count; ++t)
@@ -58,11 +55,10 @@ void gatherScaled(int count, const int* __restrict index, const double* __restri
 // Per point, its group's S and W at S[k] and W[k] (copied beside the points): the force
 // f = alpha - beta S, the wire u = u* - gammaS f, the gap xi^{n+1} = u - W and psi at n+1/2;
 // `dropped` gets psi^2 where psi is reset.
-void finishPoints(int count, const double* __restrict alpha, const double* __restrict beta,
-                  const double* __restrict gq, const double* __restrict S,
-                  const double* __restrict W, double gammaS, const double* __restrict xiPrev,
-                  const double* __restrict xiNow, double* __restrict uFree,
-                  double* __restrict xiNext, double* __restrict psi, double* __restrict dropped)
+void finishPoints(int count, const double* __restrict alpha, const double* __restrict beta, const double* __restrict gq,
+                  const double* __restrict S, const double* __restrict W, double gammaS, const double* __restrict xiPrev,
+                  const double* __restrict xiNow, double* __restrict uFree, double* __restrict xiNext, double* __restrict psi,
+                  double* __restrict dropped)
 {
     for (int k = 0; k < count; ++k)
     {
@@ -84,9 +80,8 @@ void finishPoints(int count, const double* __restrict alpha, const double* __res
 // One class of `count` groups of `size` points (member-major): per group S = sum alpha /
 // (1 + sum beta), the node W = W0 + cc h_s S. The sums run member by member over the groups
 // (contiguous, so they vectorise), each group's in member order; S and W hold them meanwhile.
-void solveClass(int size, int count, const double* __restrict alpha, const double* __restrict beta,
-                const double* __restrict W0, const double* __restrict cc, double hs,
-                double* __restrict S, double* __restrict W)
+void solveClass(int size, int count, const double* __restrict alpha, const double* __restrict beta, const double* __restrict W0,
+                const double* __restrict cc, double hs, double* __restrict S, double* __restrict W)
 {
     for (int i = 0; i < count; ++i)
         S[i] = W[i] = 0.0; // a class of size 0: nodes that hold wire ends only
@@ -107,8 +102,7 @@ void solveClass(int size, int count, const double* __restrict alpha, const doubl
 // touching, four points at a time (GCC's vector extensions, so that it vectorises).
 using Double4 = double __attribute__((vector_size(32)));
 using Long4 = long long __attribute__((vector_size(32)));
-double summarise(int n, const double* __restrict xi, const double* __restrict dropped, double& deepest,
-                 int& touching)
+double summarise(int n, const double* __restrict xi, const double* __restrict dropped, double& deepest, int& touching)
 {
     Double4 sum = {}, top = {};
     Long4 count = {};
@@ -139,10 +133,8 @@ double summarise(int n, const double* __restrict xi, const double* __restrict dr
 // of the solve); per group the largest of its points' xi^{n-1}, xi* and |psi| into reach. A
 // group whose reach is not positive has no point touching at n-1 or at xi* and none holding
 // psi: each of its points has g = 0, no force and keeps psi = 0, so its solve leaves it as it is.
-void predictClass(int size, int count, const int* __restrict wireNode, const double* __restrict u,
-                  const double* __restrict W0, const double* __restrict xiPrev,
-                  const double* __restrict psi, double* __restrict xiNext,
-                  double* __restrict reach)
+void predictClass(int size, int count, const int* __restrict wireNode, const double* __restrict u, const double* __restrict W0,
+                  const double* __restrict xiPrev, const double* __restrict psi, double* __restrict xiNext, double* __restrict reach)
 {
     for (int i = 0; i < count; ++i)
         reach[i] = 0.0;

@@ -17,8 +17,7 @@ double SnareWires::minimumSpacing(const SnareSpec& s, double k)
 }
 
 SnareWires::SnareWires(const SnareSpec& s, double, double timeStep)
-    : numWires(s.count), length(s.length_m), pitch(s.spacing_m), k(timeStep), kk(timeStep * timeStep),
-      rho(s.linearDensity_kg_per_m),
+    : numWires(s.count), length(s.length_m), pitch(s.spacing_m), k(timeStep), kk(timeStep * timeStep), rho(s.linearDensity_kg_per_m),
       maxT(s.gridTension_N > 0.0 ? s.gridTension_N : s.tension_N),
       maxSigma1(s.gridSigma1_m2_per_s >= 0.0 ? s.gridSigma1_m2_per_s : s.sigma1_m2_per_s)
 {

@@ -33,7 +33,7 @@ public:
     }
 
     int count() const { return numWires; }
-    int intervals() const { return M; }           // nodes per wire: M + 1
+    int intervals() const { return M; } // nodes per wire: M + 1
     int nodesPerWire() const { return M + 1; }
     double spacing() const { return hs; }
     double density() const { return rho; }
@@ -52,9 +52,9 @@ public:
     double interiorGain() const { return kk / (rho * q); }
     double endGain() const { return kk / (0.5 * rho * hs * q); }
 
-    double energy() const { return energyOf(uNext, uNow); }     // at n+1/2
+    double energy() const { return energyOf(uNext, uNow); }           // at n+1/2
     double energyBeforeStep() const { return energyOf(uNow, uPrev); } // at n-1/2
-    double stepLoss() const;    // k q^n
+    double stepLoss() const;                                          // k q^n
     void advance();
     void clear();
 
@@ -67,8 +67,8 @@ private:
     int numWires, M;
     double length, hs, pitch, y0;
     double k, kk, rho, T = 0, sigma0 = 0, sigma1 = 0, maxT, maxSigma1, q = 1;
-    double a0 = 0, a1 = 0, b0 = 0, b1 = 0;   // interior stencil
-    double e0 = 0, e1 = 0, f0 = 0, f1 = 0;   // end stencil (half-cell mass)
+    double a0 = 0, a1 = 0, b0 = 0, b1 = 0; // interior stencil
+    double e0 = 0, e1 = 0, f0 = 0, f1 = 0; // end stencil (half-cell mass)
 };
 
 } // namespace snaresim

@@ -3,8 +3,8 @@
 
 // Every wire's interior in one pass over the flat array (it also visits the end nodes with the
 // wrong stencil, corrected after), then the ends with their half-cell stencil (e, f).
-void freeUpdate(int wires, int intervals, const double* __restrict u, const double* __restrict up, double* __restrict out,
-                double a0, double a1, double b0, double b1, double e0, double e1, double f0, double f1)
+void freeUpdate(int wires, int intervals, const double* __restrict u, const double* __restrict up, double* __restrict out, double a0,
+                double a1, double b0, double b1, double e0, double e1, double f0, double f1)
 {
     const int total = wires * (intervals + 1);
     for (int l = 1; l < total - 1; ++l)

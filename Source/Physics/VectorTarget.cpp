@@ -39,16 +39,21 @@ VectorTargetChoice chooseVectorTarget(const char* requested, VectorTarget widest
         {
             if (target <= widest)
                 return { target, {} };
-            return { widest, "SNARESIM_VECTOR_TARGET=" + std::string(name) + ": not available on this "
+            return
+            {
+                widest, "SNARESIM_VECTOR_TARGET=" + std::string(name) +
+                            ": not available on this "
 #if SNARESIM_VECTOR_TARGETS
-                                 "processor"
+                            "processor"
 #else
-                                 "build (it has the baseline path only)"
+                            "build (it has the baseline path only)"
 #endif
-                                 "; using " + std::string(vectorTargetName(widest)) };
+                            "; using " +
+                            std::string(vectorTargetName(widest))
+            };
         }
-    return { widest, "SNARESIM_VECTOR_TARGET=" + std::string(name) + ": not one of baseline, avx2, avx512; using "
-                         + std::string(vectorTargetName(widest)) };
+    return { widest, "SNARESIM_VECTOR_TARGET=" + std::string(name) + ": not one of baseline, avx2, avx512; using " +
+                         std::string(vectorTargetName(widest)) };
 }
 
 namespace detail

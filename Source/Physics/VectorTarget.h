@@ -65,10 +65,10 @@ VectorTargetChoice chooseVectorTarget(const char* requested, VectorTarget widest
 // included through PerVectorTarget.inl) for the target in force; SNARESIM_ON_VECTOR_TARGET(f(x))
 // calls it.
 #if SNARESIM_VECTOR_TARGETS
-#define SNARESIM_ON_VECTOR_TARGET(...)                                                                 \
-    (::snaresim::vectorTarget() == ::snaresim::VectorTarget::avx512 ? isa_avx512::__VA_ARGS__       \
-     : ::snaresim::vectorTarget() == ::snaresim::VectorTarget::avx2 ? isa_avx2::__VA_ARGS__          \
-                                                                     : isa_baseline::__VA_ARGS__)
+#define SNARESIM_ON_VECTOR_TARGET(...)                                                                                                     \
+    (::snaresim::vectorTarget() == ::snaresim::VectorTarget::avx512 ? isa_avx512::__VA_ARGS__                                              \
+     : ::snaresim::vectorTarget() == ::snaresim::VectorTarget::avx2 ? isa_avx2::__VA_ARGS__                                                \
+                                                                    : isa_baseline::__VA_ARGS__)
 #else
 #define SNARESIM_ON_VECTOR_TARGET(...) (isa_baseline::__VA_ARGS__)
 #endif

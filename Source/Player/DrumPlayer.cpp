@@ -50,8 +50,7 @@ double DrumPlayer::Ramp::skip(int numSamples) noexcept
 }
 
 //==============================================================================
-DrumPlayer::DrumPlayer(ModelBuilder::ParameterReader readParameters)
-    : builder(std::move(readParameters))
+DrumPlayer::DrumPlayer(ModelBuilder::ParameterReader readParameters) : builder(std::move(readParameters))
 {
     for (const auto& spec : parameterSpecs())
         smoothed[static_cast<std::size_t>(spec.id)] = spec.kind == ParamKind::continuous && ! spec.rebuildsModel();
@@ -130,7 +129,7 @@ void DrumPlayer::start(Preparation& p) noexcept
     fellBackNow.store(current != nullptr && current->fellBack, std::memory_order_relaxed);
     fadeLength = std::max(1, (int) std::lround(crossfadeSeconds * rate));
     fadePosition = 0;
-    quietSamples = 1 << 30;     // the drum starts quiet (new or reset below)
+    quietSamples = 1 << 30; // the drum starts quiet (new or reset below)
     snapshotInterval = std::max(1, (int) std::lround(rate / 30.0));
     samplesSinceSnapshot = 0;
     samplesSinceFiniteCheck = 0;
@@ -160,7 +159,7 @@ void DrumPlayer::prepareAndStart(double sampleRate, const ParameterSet& params)
 void DrumPlayer::startWith(std::unique_ptr<Drum> drum, const ParameterSet& params)
 {
     const double drumRate = drum != nullptr ? drum->sampleRate() : 0.0;
-    auto p = prepare(0.0, params);  // nothing is built for rate 0
+    auto p = prepare(0.0, params); // nothing is built for rate 0
     p.fresh = std::make_unique<DrumModel>();
     p.fresh->requested = GridKey::of(params, drumRate);
     p.fresh->built = params;
@@ -217,7 +216,7 @@ void DrumPlayer::flushRetireBacklog() noexcept
 void DrumPlayer::installPendingModel() noexcept
 {
     if (fading != nullptr || builder.pending.isEmpty())
-        return;     // one crossfade at a time: a newer model waits in the slot
+        return; // one crossfade at a time: a newer model waits in the slot
 
     DrumModel* next = builder.pending.take();
     if (next == nullptr)
@@ -225,24 +224,24 @@ void DrumPlayer::installPendingModel() noexcept
 
     if (next->sampleRate() != rate)
     {
-        retire(next);   // built for a rate this player no longer runs at
+        retire(next); // built for a rate this player no longer runs at
         return;
     }
 
     if (current != nullptr && current->drum != nullptr && quietSamples < fadeLength)
     {
-        fading = current;       // both run while the new one fades in
+        fading = current; // both run while the new one fades in
         fadePosition = 0;
     }
     else
     {
-        retire(current);        // silent (or no drum): nothing to fade
+        retire(current); // silent (or no drum): nothing to fade
     }
 
     current = next;
     modelSwaps.fetch_add(1, std::memory_order_relaxed);
     fellBackNow.store(next->fellBack, std::memory_order_relaxed);
-    liveDirty = true;   // the new drum takes the live values (and the snares state) at once
+    liveDirty = true; // the new drum takes the live values (and the snares state) at once
 }
 
 //==============================================================================
@@ -331,8 +330,7 @@ void DrumPlayer::applyEvent(const PlayerEvent& event) noexcept
         case PlayerEvent::Type::strike:
             for (auto* m : { current, fading })
                 if (m != nullptr && m->drum != nullptr)
-                    m->drum->strikeAtDefaultPoint(
-                        strikeSpeedFromVelocity(event.velocity, m->drum->config().strikeSpeedMax_m_per_s));
+                    m->drum->strikeAtDefaultPoint(strikeSpeedFromVelocity(event.velocity, m->drum->config().strikeSpeedMax_m_per_s));
             quietSamples = 0;
             break;
 

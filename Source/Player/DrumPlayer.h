@@ -38,13 +38,13 @@ struct PlayerEvent
 {
     enum class Type : std::uint8_t
     {
-        noteOn,         // note and velocity (1..127) through the articulation map
-        strike,         // velocity (1..127): the main strike at the strike-position control
-        allSoundOff,    // silence the drum at once
-        parameter       // a new target value for one parameter from this sample on
+        noteOn,      // note and velocity (1..127) through the articulation map
+        strike,      // velocity (1..127): the main strike at the strike-position control
+        allSoundOff, // silence the drum at once
+        parameter    // a new target value for one parameter from this sample on
     };
 
-    int sample = 0;     // offset in the block; events must be in order
+    int sample = 0; // offset in the block; events must be in order
     Type type = Type::noteOn;
     int note = 0;
     int velocity = 0;
@@ -74,7 +74,7 @@ public:
 class DrumPlayer
 {
 public:
-    static constexpr int subBlockSize = 32;         // parameters are applied at least this often
+    static constexpr int subBlockSize = 32; // parameters are applied at least this often
     static constexpr double smoothingSeconds = 0.03;
     static constexpr double crossfadeSeconds = 0.02;
 
@@ -180,20 +180,20 @@ private:
     };
 
     ModelBuilder builder;
-    DrumModel* current = nullptr;       // the model playing (audio thread; start() under the host's lock)
-    DrumModel* fading = nullptr;        // the previous model, fading out
-    std::array<DrumModel*, 16> retireBacklog {};   // retired models the queue had no room for
+    DrumModel* current = nullptr;                // the model playing (audio thread; start() under the host's lock)
+    DrumModel* fading = nullptr;                 // the previous model, fading out
+    std::array<DrumModel*, 16> retireBacklog {}; // retired models the queue had no room for
     int fadePosition = 0, fadeLength = 1;
-    int quietSamples = 0;               // samples the output has been silent (no fade needed then)
-    double rate = 0.0;                  // the rate started with
+    int quietSamples = 0; // samples the output has been silent (no fade needed then)
+    double rate = 0.0;    // the rate started with
 
     // parameters (audio thread)
-    ParameterSet liveParameters;        // what the drum plays with now (smoothed)
+    ParameterSet liveParameters; // what the drum plays with now (smoothed)
     std::array<Ramp, kNumParameters> ramps {};
-    std::array<bool, kNumParameters> smoothed {};   // continuous and live
-    bool liveDirty = true;              // liveParameters changed since the last applyLive
-    double lastSnaresParameter = -1.0;  // snares_engaged as last set (-1: not yet)
-    bool snaresEngaged = true;          // the parameter, or the last snares off / on note
+    std::array<bool, kNumParameters> smoothed {}; // continuous and live
+    bool liveDirty = true;                        // liveParameters changed since the last applyLive
+    double lastSnaresParameter = -1.0;            // snares_engaged as last set (-1: not yet)
+    bool snaresEngaged = true;                    // the parameter, or the last snares off / on note
 
     // rendering (audio thread)
     std::array<float, subBlockSize> fadeScratch {};

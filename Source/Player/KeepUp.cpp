@@ -11,8 +11,8 @@
 #include <memory>
 
 #if defined(__SSE__) || defined(__x86_64__) || defined(_M_X64)
- #include <xmmintrin.h>
- #define SNARESIM_HAVE_MXCSR 1
+#include <xmmintrin.h>
+#define SNARESIM_HAVE_MXCSR 1
 #endif
 
 namespace snaresim
@@ -26,14 +26,14 @@ class FlushDenormals
 {
 public:
 #if SNARESIM_HAVE_MXCSR
-    FlushDenormals() noexcept : saved (_mm_getcsr()) { _mm_setcsr (saved | 0x8040u); } // FTZ | DAZ
-    ~FlushDenormals() { _mm_setcsr (saved); }
+    FlushDenormals() noexcept : saved(_mm_getcsr()) { _mm_setcsr(saved | 0x8040u); } // FTZ | DAZ
+    ~FlushDenormals() { _mm_setcsr(saved); }
 
 private:
     unsigned int saved;
 #elif defined(__aarch64__) && defined(__GNUC__)
-    FlushDenormals() noexcept : saved (__builtin_aarch64_get_fpcr()) { __builtin_aarch64_set_fpcr (saved | (1u << 24)); } // FZ
-    ~FlushDenormals() { __builtin_aarch64_set_fpcr (saved); }
+    FlushDenormals() noexcept : saved(__builtin_aarch64_get_fpcr()) { __builtin_aarch64_set_fpcr(saved | (1u << 24)); } // FZ
+    ~FlushDenormals() { __builtin_aarch64_set_fpcr(saved); }
 
 private:
     unsigned int saved;
@@ -41,28 +41,28 @@ private:
 };
 } // namespace
 
-bool keepsUp (const KeepUpFigures& f) noexcept
+bool keepsUp(const KeepUpFigures& f) noexcept
 {
     return ! f.cutShort && f.audioSeconds > 0.0 && f.load <= kKeepUpMaxLoad && f.worstBlockShare <= kKeepUpMaxWorstBlock;
 }
 
-KeepUpFigures measureKeepUp (Drum& drum, int blockSize, const std::function<bool()>& cancelled)
+KeepUpFigures measureKeepUp(Drum& drum, int blockSize, const std::function<bool()>& cancelled)
 {
     using Clock = std::chrono::steady_clock;
     const FlushDenormals flush;
 
     KeepUpFigures f;
-    blockSize = std::max (1, blockSize);
+    blockSize = std::max(1, blockSize);
     f.blockSize = blockSize;
     const double rate = drum.sampleRate();
     if (! (rate > 0.0))
         return f;
 
-    const int probeSamples = (int) std::ceil (kProbeSeconds * rate);
-    const int unstruckBlocks = std::max (1, (int) std::lround (0.2 * probeSamples / blockSize));
-    const int blocks = std::max (unstruckBlocks + 2, (probeSamples + blockSize - 1) / blockSize);
-    const auto cap = std::chrono::duration_cast<Clock::duration> (std::chrono::duration<double> (kProbeComputeCapSeconds));
-    constexpr int chunk = 256;     // cancellation and the cap are looked at this often
+    const int probeSamples = (int) std::ceil(kProbeSeconds * rate);
+    const int unstruckBlocks = std::max(1, (int) std::lround(0.2 * probeSamples / blockSize));
+    const int blocks = std::max(unstruckBlocks + 2, (probeSamples + blockSize - 1) / blockSize);
+    const auto cap = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(kProbeComputeCapSeconds));
+    constexpr int chunk = 256; // cancellation and the cap are looked at this often
     std::array<float, chunk> scratch {};
 
     drum.reset();
@@ -82,11 +82,11 @@ KeepUpFigures measureKeepUp (Drum& drum, int blockSize, const std::function<bool
                 f.cutShort = total + block > cap;
                 break;
             }
-            const int n = std::min (chunk, blockSize - done);
+            const int n = std::min(chunk, blockSize - done);
             const auto start = Clock::now();
             if (b == unstruckBlocks && done == 0)
-                drum.playNote (38, 127);
-            drum.process (scratch.data(), n);
+                drum.playNote(38, 127);
+            drum.process(scratch.data(), n);
             block += Clock::now() - start;
             done += n;
         }
@@ -94,36 +94,33 @@ KeepUpFigures measureKeepUp (Drum& drum, int blockSize, const std::function<bool
         rendered += done;
         // A block cut short counts as a whole one only for its own share.
         if (done > 0)
-            worst = std::max (worst, done == blockSize ? block : block * blockSize / done);
+            worst = std::max(worst, done == blockSize ? block : block * blockSize / done);
     }
     drum.reset();
 
-    const double seconds = std::chrono::duration<double> (total).count();
+    const double seconds = std::chrono::duration<double>(total).count();
     f.audioSeconds = (double) rendered / rate;
     f.load = f.audioSeconds > 0.0 ? seconds / f.audioSeconds : 0.0;
-    f.worstBlockShare = std::chrono::duration<double> (worst).count() / ((double) blockSize / rate);
+    f.worstBlockShare = std::chrono::duration<double>(worst).count() / ((double) blockSize / rate);
     return f;
 }
 
 //==============================================================================
-KeepUpCheck::~KeepUpCheck()
-{
-    stop();
-}
+KeepUpCheck::~KeepUpCheck() { stop(); }
 
 void KeepUpCheck::stop()
 {
     {
-        const std::lock_guard<std::mutex> g (lock);
+        const std::lock_guard<std::mutex> g(lock);
         exitRequested = true;
-        cancel.store (true);
+        cancel.store(true);
     }
     wake.notify_all();
     if (thread.joinable())
         thread.join();
 }
 
-const KeepUpCheck::Verdict* KeepUpCheck::findLocked (const Question& q) const
+const KeepUpCheck::Verdict* KeepUpCheck::findLocked(const Question& q) const
 {
     for (const auto& e : verdicts)
         if (e.question == q)
@@ -131,15 +128,15 @@ const KeepUpCheck::Verdict* KeepUpCheck::findLocked (const Question& q) const
     return nullptr;
 }
 
-KeepUpCheck::Verdict KeepUpCheck::ask (const ParameterSet& params, double sampleRate, int blockSize)
+KeepUpCheck::Verdict KeepUpCheck::ask(const ParameterSet& params, double sampleRate, int blockSize)
 {
-    if (! (sampleRate > 0.0) || ! std::isfinite (sampleRate) || blockSize <= 0)
+    if (! (sampleRate > 0.0) || ! std::isfinite(sampleRate) || blockSize <= 0)
         return {};
 
-    const Question q { GridKey::of (params, sampleRate), blockSize };
-    const std::lock_guard<std::mutex> g (lock);
+    const Question q { GridKey::of(params, sampleRate), blockSize };
+    const std::lock_guard<std::mutex> g(lock);
 
-    if (const auto* known = findLocked (q))
+    if (const auto* known = findLocked(q))
         return *known;
 
     const bool changed = ! hasWanted || ! (wanted == q);
@@ -150,7 +147,7 @@ KeepUpCheck::Verdict KeepUpCheck::ask (const ParameterSet& params, double sample
 
     // A measurement of another question is no longer wanted.
     if (changed && busy && ! (inFlight == q))
-        cancel.store (true);
+        cancel.store(true);
 
     if (exitRequested)
         return {};
@@ -161,11 +158,11 @@ KeepUpCheck::Verdict KeepUpCheck::ask (const ParameterSet& params, double sample
         {
             try
             {
-                thread = std::thread ([this] { run(); });
+                thread = std::thread([this] { run(); });
             }
             catch (const std::exception&)
             {
-                return {};  // no thread to measure on: nothing is known
+                return {}; // no thread to measure on: nothing is known
             }
         }
         wake.notify_all();
@@ -176,18 +173,18 @@ KeepUpCheck::Verdict KeepUpCheck::ask (const ParameterSet& params, double sample
     return v;
 }
 
-void KeepUpCheck::setMeasurement (Measurement m)
+void KeepUpCheck::setMeasurement(Measurement m)
 {
-    const std::lock_guard<std::mutex> g (lock);
-    measurement = std::move (m);
+    const std::lock_guard<std::mutex> g(lock);
+    measurement = std::move(m);
 }
 
 KeepUpCheck::Verdict KeepUpCheck::latest() const
 {
-    const std::lock_guard<std::mutex> g (lock);
+    const std::lock_guard<std::mutex> g(lock);
     if (! hasWanted)
         return {};
-    if (const auto* known = findLocked (wanted))
+    if (const auto* known = findLocked(wanted))
         return *known;
     Verdict v;
     v.state = exitRequested ? State::none : State::measuring;
@@ -196,11 +193,11 @@ KeepUpCheck::Verdict KeepUpCheck::latest() const
 
 void KeepUpCheck::run()
 {
-    std::unique_lock<std::mutex> g (lock);
+    std::unique_lock<std::mutex> g(lock);
 
     for (;;)
     {
-        wake.wait (g, [this] { return exitRequested || (hasWanted && findLocked (wanted) == nullptr); });
+        wake.wait(g, [this] { return exitRequested || (hasWanted && findLocked(wanted) == nullptr); });
         if (exitRequested)
             return;
 
@@ -208,26 +205,26 @@ void KeepUpCheck::run()
         // The snares on: the costlier case, and a live change (notes 33 / 34 throw them off and
         // on without a new model), so the verdict must hold for it.
         ParameterSet params = wantedParams;
-        params.setClamped (ParamId::snaresEngaged, 1.0);
+        params.setClamped(ParamId::snaresEngaged, 1.0);
         const double rate = wantedRate;
         inFlight = q;
         busy = true;
-        cancel.store (false);
-        const Measurement measure = measurement ? measurement : Measurement (&measureKeepUp);
+        cancel.store(false);
+        const Measurement measure = measurement ? measurement : Measurement(&measureKeepUp);
         g.unlock();
 
         Verdict v;
         bool finished = true;
         try
         {
-            Drum drum (makeDrumConfig (params, rate));
+            Drum drum(makeDrumConfig(params, rate));
             if (cancel.load())
                 finished = false;
             else
             {
-                v.figures = measure (drum, q.blockSize, [this] { return cancel.load (std::memory_order_relaxed); });
+                v.figures = measure(drum, q.blockSize, [this] { return cancel.load(std::memory_order_relaxed); });
                 finished = ! cancel.load() || v.figures.cutShort;
-                v.state = keepsUp (v.figures) ? State::keepsUp : State::tooSlow;
+                v.state = keepsUp(v.figures) ? State::keepsUp : State::tooSlow;
             }
         }
         catch (const std::exception&)
@@ -238,12 +235,12 @@ void KeepUpCheck::run()
 
         g.lock();
         busy = false;
-        if (finished && findLocked (q) == nullptr)
+        if (finished && findLocked(q) == nullptr)
         {
             if (verdicts.size() >= maxVerdicts)
-                verdicts.erase (verdicts.begin());
-            verdicts.push_back ({ q, v });
-            done.fetch_add (1, std::memory_order_relaxed);
+                verdicts.erase(verdicts.begin());
+            verdicts.push_back({ q, v });
+            done.fetch_add(1, std::memory_order_relaxed);
         }
     }
 }

@@ -22,18 +22,18 @@ class Drum;
 
 struct KeepUpFigures
 {
-    double load = 0.0;              // seconds of compute per second of audio, over the probe
-    double worstBlockShare = 0.0;   // the slowest block's compute / its duration
-    double audioSeconds = 0.0;      // audio rendered
+    double load = 0.0;            // seconds of compute per second of audio, over the probe
+    double worstBlockShare = 0.0; // the slowest block's compute / its duration
+    double audioSeconds = 0.0;    // audio rendered
     int blockSize = 0;
-    bool cutShort = false;          // stopped at the compute cap: far slower than real time
+    bool cutShort = false; // stopped at the compute cap: far slower than real time
 };
 
 // What "keeps up" means: at most half the real-time budget on average (the host, the editor
 // and other plug-ins need the rest), and the slowest block done within 80 % of its duration.
 inline constexpr double kKeepUpMaxLoad = 0.5;
 inline constexpr double kKeepUpMaxWorstBlock = 0.8;
-bool keepsUp (const KeepUpFigures& figures) noexcept;
+bool keepsUp(const KeepUpFigures& figures) noexcept;
 
 // The probe: its length in audio (the first 20 % unstruck, then note 38 at velocity 127), at
 // least one unstruck and two struck blocks; a render that has used kProbeComputeCapSeconds of
@@ -44,18 +44,18 @@ inline constexpr double kProbeComputeCapSeconds = 4.0;
 // Times `drum` (from silence: it is reset first, and left reset) in blocks of blockSize samples
 // through Drum::process, with denormals flushed as the plug-in's processBlock does. `cancelled`
 // is polled every few hundred samples; when it says so the figures so far are returned.
-KeepUpFigures measureKeepUp (Drum& drum, int blockSize, const std::function<bool()>& cancelled = {});
+KeepUpFigures measureKeepUp(Drum& drum, int blockSize, const std::function<bool()>& cancelled = {});
 
 class KeepUpCheck
 {
 public:
     enum class State
     {
-        none,       // nothing asked yet, or no usable rate
-        measuring,  // asked; the measurement runs
+        none,      // nothing asked yet, or no usable rate
+        measuring, // asked; the measurement runs
         keepsUp,
         tooSlow,
-        failed      // the drum could not be built (treated as too slow)
+        failed // the drum could not be built (treated as too slow)
     };
 
     struct Verdict
@@ -66,28 +66,28 @@ public:
 
     // How a drum is measured: measureKeepUp, or a stand-in for another machine (tests: an
     // artificial slowdown, a cost model). Called on the check's thread.
-    using Measurement = std::function<KeepUpFigures (Drum&, int blockSize, const std::function<bool()>& cancelled)>;
+    using Measurement = std::function<KeepUpFigures(Drum&, int blockSize, const std::function<bool()>& cancelled)>;
 
     KeepUpCheck() = default;
     ~KeepUpCheck();
-    KeepUpCheck (const KeepUpCheck&) = delete;
-    KeepUpCheck& operator= (const KeepUpCheck&) = delete;
+    KeepUpCheck(const KeepUpCheck&) = delete;
+    KeepUpCheck& operator=(const KeepUpCheck&) = delete;
 
     // Whether a drum built from `params` (with the snares on) keeps up at this rate in blocks of
     // blockSize. Returns at once: a verdict measured before for the same model (GridKey) and
     // block size (the question in measurement is left alone), or `measuring` (the measurement
     // is started on the check's thread; the newest such question replaces one whose measurement
     // has not finished). Thread-safe; not for the audio thread.
-    Verdict ask (const ParameterSet& params, double sampleRate, int blockSize);
+    Verdict ask(const ParameterSet& params, double sampleRate, int blockSize);
 
     // Measures with `m` from the next question on (an empty one: measureKeepUp). Thread-safe.
-    void setMeasurement (Measurement m);
+    void setMeasurement(Measurement m);
 
     // The verdict for the last question asked (measuring while it runs). Thread-safe.
     Verdict latest() const;
 
     // Measurements finished so far (for tests).
-    int measurementsDone() const noexcept { return done.load (std::memory_order_relaxed); }
+    int measurementsDone() const noexcept { return done.load(std::memory_order_relaxed); }
 
     // Stops the thread (a measurement in flight stops within a few hundred samples' compute).
     void stop();
@@ -97,7 +97,7 @@ private:
     {
         GridKey key;
         int blockSize = 0;
-        bool operator== (const Question&) const = default;
+        bool operator==(const Question&) const = default;
     };
     struct Entry
     {
@@ -106,20 +106,20 @@ private:
     };
 
     void run();
-    const Verdict* findLocked (const Question& q) const;
+    const Verdict* findLocked(const Question& q) const;
 
     mutable std::mutex lock;
     std::condition_variable wake;
     std::thread thread;
-    bool exitRequested = false;         // guarded by lock
-    bool hasWanted = false;             // guarded by lock
-    Question wanted;                    // guarded by lock: the last question asked
-    ParameterSet wantedParams;          // guarded by lock
-    double wantedRate = 0.0;            // guarded by lock
-    bool busy = false;                  // guarded by lock: a measurement runs
-    Question inFlight;                  // guarded by lock: its question
-    std::vector<Entry> verdicts;        // guarded by lock: newest last, at most maxVerdicts
-    Measurement measurement;            // guarded by lock: empty for measureKeepUp
+    bool exitRequested = false;  // guarded by lock
+    bool hasWanted = false;      // guarded by lock
+    Question wanted;             // guarded by lock: the last question asked
+    ParameterSet wantedParams;   // guarded by lock
+    double wantedRate = 0.0;     // guarded by lock
+    bool busy = false;           // guarded by lock: a measurement runs
+    Question inFlight;           // guarded by lock: its question
+    std::vector<Entry> verdicts; // guarded by lock: newest last, at most maxVerdicts
+    Measurement measurement;     // guarded by lock: empty for measureKeepUp
     std::atomic<int> done { 0 };
     std::atomic<bool> cancel { false };
 

@@ -10,29 +10,29 @@
 namespace snaresim
 {
 
-GridKey GridKey::of (const ParameterSet& params, double sampleRate) noexcept
+GridKey GridKey::of(const ParameterSet& params, double sampleRate) noexcept
 {
     GridKey key;
     key.sampleRate = sampleRate;
 
     for (const auto& s : parameterSpecs())
         if (s.rebuildsModel())
-            key.values[static_cast<std::size_t> (s.id)] = params.get (s.id);
+            key.values[static_cast<std::size_t>(s.id)] = params.get(s.id);
 
     return key;
 }
 
-std::unique_ptr<DrumModel> buildModel (const ParameterSet& params, double sampleRate)
+std::unique_ptr<DrumModel> buildModel(const ParameterSet& params, double sampleRate)
 {
     auto model = std::make_unique<DrumModel>();
-    model->requested = GridKey::of (params, sampleRate);
+    model->requested = GridKey::of(params, sampleRate);
 
-    if (! (sampleRate > 0.0) || ! std::isfinite (sampleRate))
+    if (! (sampleRate > 0.0) || ! std::isfinite(sampleRate))
         return model;
 
     try
     {
-        model->drum = std::make_unique<Drum> (makeDrumConfig (params, sampleRate));
+        model->drum = std::make_unique<Drum>(makeDrumConfig(params, sampleRate));
         model->built = params;
         return model;
     }
@@ -50,7 +50,7 @@ std::unique_ptr<DrumModel> buildModel (const ParameterSet& params, double sample
     try
     {
         const ParameterSet defaults;
-        model->drum = std::make_unique<Drum> (makeDrumConfig (defaults, sampleRate));
+        model->drum = std::make_unique<Drum>(makeDrumConfig(defaults, sampleRate));
         model->built = defaults;
     }
     catch (const std::bad_alloc&)
@@ -67,15 +67,9 @@ std::unique_ptr<DrumModel> buildModel (const ParameterSet& params, double sample
 }
 
 //==============================================================================
-ModelBuilder::ModelBuilder (ParameterReader reader)
-    : readParameters (std::move (reader))
-{
-}
+ModelBuilder::ModelBuilder(ParameterReader reader) : readParameters(std::move(reader)) {}
 
-ModelBuilder::~ModelBuilder()
-{
-    stop();
-}
+ModelBuilder::~ModelBuilder() { stop(); }
 
 void ModelBuilder::start()
 {
@@ -83,10 +77,10 @@ void ModelBuilder::start()
         return;
 
     {
-        const std::lock_guard<std::mutex> g (wakeLock);
+        const std::lock_guard<std::mutex> g(wakeLock);
         exitRequested = false;
     }
-    thread = std::thread ([this] { run(); });
+    thread = std::thread([this] { run(); });
 }
 
 void ModelBuilder::stop()
@@ -95,14 +89,14 @@ void ModelBuilder::stop()
         return;
 
     {
-        const std::lock_guard<std::mutex> g (wakeLock);
+        const std::lock_guard<std::mutex> g(wakeLock);
         exitRequested = true;
     }
     wake.notify_all();
-    thread.join();    // a build in flight finishes first
+    thread.join(); // a build in flight finishes first
 }
 
-void ModelBuilder::setTargetLocked (double sampleRate, const GridKey& current)
+void ModelBuilder::setTargetLocked(double sampleRate, const GridKey& current)
 {
     targetRate = sampleRate;
     lastKey = current;
@@ -110,7 +104,7 @@ void ModelBuilder::setTargetLocked (double sampleRate, const GridKey& current)
 
 void ModelBuilder::buildNowIfNeeded()
 {
-    const std::lock_guard<std::mutex> g (lock);
+    const std::lock_guard<std::mutex> g(lock);
     buildIfNeededLocked();
 }
 
@@ -120,7 +114,7 @@ void ModelBuilder::buildIfNeededLocked()
         return;
 
     const auto params = readParameters();
-    const auto key = GridKey::of (params, targetRate);
+    const auto key = GridKey::of(params, targetRate);
 
     if (key == lastKey)
         return;
@@ -129,7 +123,7 @@ void ModelBuilder::buildIfNeededLocked()
 
     try
     {
-        model = buildModel (params, targetRate);
+        model = buildModel(params, targetRate);
     }
     catch (const std::exception&)
     {
@@ -138,7 +132,7 @@ void ModelBuilder::buildIfNeededLocked()
 
     // A model the audio thread has not taken yet is superseded: delete it.
     if (model != nullptr)
-        delete pending.exchange (model.release());
+        delete pending.exchange(model.release());
 
     lastKey = key;
 }
@@ -150,12 +144,12 @@ void ModelBuilder::run()
         retired.deleteAll();
 
         {
-            const std::lock_guard<std::mutex> g (lock);
+            const std::lock_guard<std::mutex> g(lock);
             buildIfNeededLocked();
         }
 
-        std::unique_lock<std::mutex> w (wakeLock);
-        if (wake.wait_for (w, std::chrono::milliseconds (pollIntervalMs), [this] { return exitRequested; }))
+        std::unique_lock<std::mutex> w(wakeLock);
+        if (wake.wait_for(w, std::chrono::milliseconds(pollIntervalMs), [this] { return exitRequested; }))
             break;
     }
 

@@ -11,9 +11,9 @@
 #include "Parameters.h"
 
 #include <array>
-#include <cstddef>
 #include <atomic>
 #include <condition_variable>
+#include <cstddef>
 #include <functional>
 #include <memory>
 #include <mutex>
@@ -26,26 +26,26 @@ namespace snaresim
 struct GridKey
 {
     double sampleRate = 0.0;
-    std::array<double, kNumParameters> values {};   // parameters that rebuild the model; 0 for the others
+    std::array<double, kNumParameters> values {}; // parameters that rebuild the model; 0 for the others
 
-    static GridKey of (const ParameterSet& params, double sampleRate) noexcept;
-    bool operator== (const GridKey&) const = default;
+    static GridKey of(const ParameterSet& params, double sampleRate) noexcept;
+    bool operator==(const GridKey&) const = default;
 };
 
 struct DrumModel
 {
-    std::unique_ptr<Drum> drum;     // nullptr: nothing can be simulated at this rate (silence)
-    ParameterSet built;             // the values the drum was built from
-    GridKey requested;              // what was asked for (differs from `built` after a fallback)
-    bool fellBack = false;          // the requested values failed; built from the defaults
-    bool fixed = false;             // a host's own drum, played as built (no live parameters)
+    std::unique_ptr<Drum> drum; // nullptr: nothing can be simulated at this rate (silence)
+    ParameterSet built;         // the values the drum was built from
+    GridKey requested;          // what was asked for (differs from `built` after a fallback)
+    bool fellBack = false;      // the requested values failed; built from the defaults
+    bool fixed = false;         // a host's own drum, played as built (no live parameters)
 
     double sampleRate() const noexcept { return requested.sampleRate; }
 };
 
 // Builds a model: from `params`, else from the default parameter set at that rate, else an
 // empty (silent) model. Never throws anything but std::bad_alloc. Not for the audio thread.
-std::unique_ptr<DrumModel> buildModel (const ParameterSet& params, double sampleRate);
+std::unique_ptr<DrumModel> buildModel(const ParameterSet& params, double sampleRate);
 
 // One slot, one pointer: whoever exchanges a pointer out owns it.
 template <typename T>
@@ -53,14 +53,14 @@ class AtomicSlot
 {
 public:
     AtomicSlot() = default;
-    AtomicSlot (const AtomicSlot&) = delete;
-    AtomicSlot& operator= (const AtomicSlot&) = delete;
+    AtomicSlot(const AtomicSlot&) = delete;
+    AtomicSlot& operator=(const AtomicSlot&) = delete;
     ~AtomicSlot() { delete take(); }
 
     // Puts `next` in the slot and returns what was there (the caller owns it), or nullptr.
-    T* exchange (T* next) noexcept { return slot.exchange (next, std::memory_order_acq_rel); }
-    T* take() noexcept { return exchange (nullptr); }
-    bool isEmpty() const noexcept { return slot.load (std::memory_order_acquire) == nullptr; }
+    T* exchange(T* next) noexcept { return slot.exchange(next, std::memory_order_acq_rel); }
+    T* take() noexcept { return exchange(nullptr); }
+    bool isEmpty() const noexcept { return slot.load(std::memory_order_acquire) == nullptr; }
 
 private:
     std::atomic<T*> slot { nullptr };
@@ -73,17 +73,17 @@ class RetireQueue
 {
 public:
     RetireQueue() = default;
-    RetireQueue (const RetireQueue&) = delete;
-    RetireQueue& operator= (const RetireQueue&) = delete;
+    RetireQueue(const RetireQueue&) = delete;
+    RetireQueue& operator=(const RetireQueue&) = delete;
     ~RetireQueue() { deleteAll(); }
 
     // False when every slot is taken: keep the object and try again later.
-    bool tryPush (T* object) noexcept
+    bool tryPush(T* object) noexcept
     {
         for (auto& s : slots)
         {
             T* expected = nullptr;
-            if (s.compare_exchange_strong (expected, object, std::memory_order_acq_rel))
+            if (s.compare_exchange_strong(expected, object, std::memory_order_acq_rel))
                 return true;
         }
         return false;
@@ -92,7 +92,7 @@ public:
     void deleteAll()
     {
         for (auto& s : slots)
-            delete s.exchange (nullptr, std::memory_order_acq_rel);
+            delete s.exchange(nullptr, std::memory_order_acq_rel);
     }
 
 private:
@@ -105,9 +105,9 @@ private:
 class ModelBuilder final
 {
 public:
-    using ParameterReader = std::function<ParameterSet()>;  // thread-safe (reads atomics)
+    using ParameterReader = std::function<ParameterSet()>; // thread-safe (reads atomics)
 
-    explicit ModelBuilder (ParameterReader readParameters);
+    explicit ModelBuilder(ParameterReader readParameters);
     ~ModelBuilder();
 
     void start();
@@ -119,15 +119,15 @@ public:
 
     // With getLock() held: models are built at this rate, and `current` is what is installed
     // (so no model is built for it). A sample rate <= 0 stops building.
-    void setTargetLocked (double sampleRate, const GridKey& current);
+    void setTargetLocked(double sampleRate, const GridKey& current);
 
     // Builds the model the parameters need now, on the calling thread, if it differs from the
     // last one (message thread, after a state or program load: the next block then plays it).
     // Never the audio thread.
     void buildNowIfNeeded();
 
-    AtomicSlot<DrumModel> pending;          // builder -> audio thread
-    RetireQueue<DrumModel, 8> retired;      // audio thread -> builder (deleted there)
+    AtomicSlot<DrumModel> pending;     // builder -> audio thread
+    RetireQueue<DrumModel, 8> retired; // audio thread -> builder (deleted there)
 
     static constexpr int pollIntervalMs = 15;
 
@@ -140,7 +140,7 @@ private:
     std::thread thread;
     std::mutex wakeLock;
     std::condition_variable wake;
-    bool exitRequested = false;     // guarded by wakeLock
+    bool exitRequested = false; // guarded by wakeLock
     double targetRate = 0.0;    // guarded by lock
     GridKey lastKey;            // guarded by lock: the newest model built or installed
 };

@@ -24,8 +24,8 @@ public:
             s = std::make_unique<T>();
     }
 
-    TripleBuffer (const TripleBuffer&) = delete;
-    TripleBuffer& operator= (const TripleBuffer&) = delete;
+    TripleBuffer(const TripleBuffer&) = delete;
+    TripleBuffer& operator=(const TripleBuffer&) = delete;
 
     // Writer: the object to fill. Stays the writer's until publish().
     T& back() noexcept { return *slots[(size_t) backIndex]; }
@@ -33,17 +33,17 @@ public:
     // Writer: make back() the newest value; the writer gets a free slot for the next one.
     void publish() noexcept
     {
-        const int previousMiddle = middle.exchange (backIndex | freshBit, std::memory_order_acq_rel);
+        const int previousMiddle = middle.exchange(backIndex | freshBit, std::memory_order_acq_rel);
         backIndex = previousMiddle & indexMask;
     }
 
     // Reader: true when a value was published since the last take; then front() holds it.
     bool take() noexcept
     {
-        if ((middle.load (std::memory_order_acquire) & freshBit) == 0)
+        if ((middle.load(std::memory_order_acquire) & freshBit) == 0)
             return false;
 
-        const int previousMiddle = middle.exchange (frontIndex, std::memory_order_acq_rel);
+        const int previousMiddle = middle.exchange(frontIndex, std::memory_order_acq_rel);
         frontIndex = previousMiddle & indexMask;
         return true;
     }
@@ -56,9 +56,9 @@ private:
     static constexpr int freshBit = 4;
 
     std::array<std::unique_ptr<T>, 3> slots;
-    int backIndex = 0;              // writer only
-    int frontIndex = 1;             // reader only
-    std::atomic<int> middle { 2 };  // shared: index | freshBit
+    int backIndex = 0;             // writer only
+    int frontIndex = 1;            // reader only
+    std::atomic<int> middle { 2 }; // shared: index | freshBit
 };
 
 } // namespace snaresim

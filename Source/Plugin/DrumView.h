@@ -21,16 +21,16 @@ namespace snaresim::ui
 class DrumView final : public juce::Component
 {
 public:
-    explicit DrumView (EditorLookAndFeel&);
+    explicit DrumView(EditorLookAndFeel&);
 
     // A new snapshot (message thread).
-    void update (const DrumSnapshot&);
+    void update(const DrumSnapshot&);
 
     // The current colour scale: displacement shown at full colour (m).
     float getColourScale() const noexcept { return headScale; }
 
     // A line over the picture (empty: none), e.g. that the air box does not keep up here.
-    void setNotice (const juce::String& text);
+    void setNotice(const juce::String& text);
     const juce::String& getNotice() const noexcept { return notice; }
 
     // True once a snapshot has been shown.
@@ -40,18 +40,18 @@ public:
     juce::Rectangle<float> getBatterDisc() const noexcept { return batterDisc; }
     juce::Rectangle<float> getCarryDisc() const noexcept { return carryDisc; }
 
-    void paint (juce::Graphics&) override;
+    void paint(juce::Graphics&) override;
     void resized() override;
 
     // The diverging colour map, t in [-1, 1] (exposed for the legend and tests).
-    static juce::Colour colourFor (float t);
+    static juce::Colour colourFor(float t);
 
 private:
     void renderHeads();
-    void renderHead (const std::array<float, DrumSnapshot::raster * DrumSnapshot::raster>& raster, juce::Image& image) const;
-    void paintHead (juce::Graphics&, juce::Rectangle<float> disc, const juce::Image&) const;
-    void paintWires (juce::Graphics&, juce::Rectangle<float> disc);
-    void paintLegend (juce::Graphics&, juce::Rectangle<int> area) const;
+    void renderHead(const std::array<float, DrumSnapshot::raster * DrumSnapshot::raster>& raster, juce::Image& image) const;
+    void paintHead(juce::Graphics&, juce::Rectangle<float> disc, const juce::Image&) const;
+    void paintWires(juce::Graphics&, juce::Rectangle<float> disc);
+    void paintLegend(juce::Graphics&, juce::Rectangle<int> area) const;
 
     EditorLookAndFeel& look;
 
@@ -70,9 +70,9 @@ private:
     juce::Rectangle<int> headsArea, legendArea;
     juce::Rectangle<float> batterDisc, carryDisc;
 
-    juce::Path wirePath, touchPath;  // reused between frames
+    juce::Path wirePath, touchPath; // reused between frames
 
-    JUCE_DECLARE_NON_COPYABLE_WITH_LEAK_DETECTOR (DrumView)
+    JUCE_DECLARE_NON_COPYABLE_WITH_LEAK_DETECTOR(DrumView)
 };
 
 } // namespace snaresim::ui

@@ -21,11 +21,11 @@ class ParameterControl final : public juce::Component
 public:
     enum class Style
     {
-        largeKnob,  // the three main controls: name above, big knob, value below
-        row         // name on the left, slider / switch / combo box and value on the right
+        largeKnob, // the three main controls: name above, big knob, value below
+        row        // name on the left, slider / switch / combo box and value on the right
     };
 
-    ParameterControl (juce::AudioProcessorValueTreeState&, const ParameterSpec&, Style, EditorLookAndFeel&);
+    ParameterControl(juce::AudioProcessorValueTreeState&, const ParameterSpec&, Style, EditorLookAndFeel&);
     ~ParameterControl() override;
 
     const ParameterSpec& getSpec() const noexcept { return spec; }
@@ -50,28 +50,28 @@ private:
     std::unique_ptr<juce::AudioProcessorValueTreeState::ButtonAttachment> buttonAttachment;
     std::unique_ptr<juce::AudioProcessorValueTreeState::ComboBoxAttachment> comboAttachment;
 
-    JUCE_DECLARE_NON_COPYABLE_WITH_LEAK_DETECTOR (ParameterControl)
+    JUCE_DECLARE_NON_COPYABLE_WITH_LEAK_DETECTOR(ParameterControl)
 };
 
 // A titled panel of the parameters of one group.
 class ParameterPanel final : public juce::Component
 {
 public:
-    ParameterPanel (juce::String groupKey, juce::String title, ParameterControl::Style, EditorLookAndFeel&);
+    ParameterPanel(juce::String groupKey, juce::String title, ParameterControl::Style, EditorLookAndFeel&);
 
-    void addParameter (juce::AudioProcessorValueTreeState&, const ParameterSpec&);
+    void addParameter(juce::AudioProcessorValueTreeState&, const ParameterSpec&);
 
     const juce::String& getGroupKey() const noexcept { return groupKey; }
     int getNumControls() const noexcept { return (int) controls.size(); }
-    ParameterControl* getControl (int index) const { return controls[(size_t) index].get(); }
+    ParameterControl* getControl(int index) const { return controls[(size_t) index].get(); }
 
     // Height wanted for rows of `rowHeight` pixels (row style).
-    int getPreferredHeight (int rowHeight) const;
+    int getPreferredHeight(int rowHeight) const;
 
     // Row height used by resized() (row style).
-    void setRowHeight (int newRowHeight);
+    void setRowHeight(int newRowHeight);
 
-    void paint (juce::Graphics&) override;
+    void paint(juce::Graphics&) override;
     void resized() override;
 
 private:
@@ -81,13 +81,12 @@ private:
     int rowHeight = 26;
     std::vector<std::unique_ptr<ParameterControl>> controls;
 
-    JUCE_DECLARE_NON_COPYABLE_WITH_LEAK_DETECTOR (ParameterPanel)
+    JUCE_DECLARE_NON_COPYABLE_WITH_LEAK_DETECTOR(ParameterPanel)
 };
 
 // One panel per group of the schema (parameterGroups()), in its order, the groups in
 // `largeKnobGroups` with large knobs and the rest as rows.
-std::vector<std::unique_ptr<ParameterPanel>> makeParameterPanels (juce::AudioProcessorValueTreeState&,
-                                                                  EditorLookAndFeel&,
-                                                                  const juce::StringArray& largeKnobGroups);
+std::vector<std::unique_ptr<ParameterPanel>> makeParameterPanels(juce::AudioProcessorValueTreeState&, EditorLookAndFeel&,
+                                                                 const juce::StringArray& largeKnobGroups);
 
 } // namespace snaresim::ui

@@ -20,8 +20,7 @@
 
 class SnareSimAudioProcessor;
 
-class SnareSimAudioProcessorEditor final : public juce::AudioProcessorEditor,
-                                           private juce::Timer
+class SnareSimAudioProcessorEditor final : public juce::AudioProcessorEditor, private juce::Timer
 {
 public:
     static constexpr int defaultWidth = 1000;
@@ -32,7 +31,7 @@ public:
     static constexpr int maxHeight = 1600;
     static constexpr int refreshRateHz = 30;
 
-    explicit SnareSimAudioProcessorEditor (SnareSimAudioProcessor&);
+    explicit SnareSimAudioProcessorEditor(SnareSimAudioProcessor&);
     ~SnareSimAudioProcessorEditor() override;
 
     // What the timer does: pull the newest snapshot, read the meters, follow the program.
@@ -41,14 +40,14 @@ public:
 
     const snaresim::ui::DrumView& getDrumView() const noexcept { return drumView; }
 
-    void paint (juce::Graphics&) override;
+    void paint(juce::Graphics&) override;
     void resized() override;
 
 private:
     void timerCallback() override;
-    void layoutParameterPanels (juce::Rectangle<int> area);
+    void layoutParameterPanels(juce::Rectangle<int> area);
     void refreshPresetList();
-    void choosePresetFile (bool save);
+    void choosePresetFile(bool save);
 
     SnareSimAudioProcessor& processor;
 
@@ -59,10 +58,10 @@ private:
 
     juce::Label presetLabel;
     juce::ComboBox presetBox;
-    juce::TextButton presetFileButton { "File" };      // Load / Save a preset file
-    std::unique_ptr<juce::FileChooser> presetChooser;  // the open load / save dialog
+    juce::TextButton presetFileButton { "File" };     // Load / Save a preset file
+    std::unique_ptr<juce::FileChooser> presetChooser; // the open load / save dialog
 
-    std::vector<std::unique_ptr<snaresim::ui::ParameterPanel>> panels;  // panels[0]: the large knobs
+    std::vector<std::unique_ptr<snaresim::ui::ParameterPanel>> panels; // panels[0]: the large knobs
     snaresim::ui::ParameterPanel* mainPanel = nullptr;
 
     snaresim::ui::DrumView drumView;
@@ -71,8 +70,8 @@ private:
 
     juce::Label noteMapLabel;
 
-    snaresim::DrumSnapshot snapshot;  // reused: filled by pullSnapshot
+    snaresim::DrumSnapshot snapshot; // reused: filled by pullSnapshot
     juce::Rectangle<int> headerArea;
 
-    JUCE_DECLARE_NON_COPYABLE_WITH_LEAK_DETECTOR (SnareSimAudioProcessorEditor)
+    JUCE_DECLARE_NON_COPYABLE_WITH_LEAK_DETECTOR(SnareSimAudioProcessorEditor)
 };

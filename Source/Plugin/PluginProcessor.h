@@ -21,20 +21,19 @@
 #include "KeepUp.h"
 #include "Parameters.h"
 
-class SnareSimAudioProcessor final : public juce::AudioProcessor,
-                                     private juce::AsyncUpdater
+class SnareSimAudioProcessor final : public juce::AudioProcessor, private juce::AsyncUpdater
 {
 public:
     SnareSimAudioProcessor();
     ~SnareSimAudioProcessor() override;
 
     //==============================================================================
-    void prepareToPlay (double sampleRate, int maximumExpectedSamplesPerBlock) override;
+    void prepareToPlay(double sampleRate, int maximumExpectedSamplesPerBlock) override;
     void releaseResources() override;
-    bool isBusesLayoutSupported (const BusesLayout& layouts) const override;
+    bool isBusesLayoutSupported(const BusesLayout& layouts) const override;
 
     using AudioProcessor::processBlock;
-    void processBlock (juce::AudioBuffer<float>& buffer, juce::MidiBuffer& midiMessages) override;
+    void processBlock(juce::AudioBuffer<float>& buffer, juce::MidiBuffer& midiMessages) override;
 
     //==============================================================================
     juce::AudioProcessorEditor* createEditor() override;
@@ -51,14 +50,14 @@ public:
     // called from inside processBlock, it is deferred to the message thread.
     int getNumPrograms() override;
     int getCurrentProgram() override;
-    void setCurrentProgram (int index) override;
-    const juce::String getProgramName (int index) override;
-    void changeProgramName (int, const juce::String&) override {}
+    void setCurrentProgram(int index) override;
+    const juce::String getProgramName(int index) override;
+    void changeProgramName(int, const juce::String&) override {}
 
     //==============================================================================
     // The versioned state (PluginState.h).
-    void getStateInformation (juce::MemoryBlock& destData) override;
-    void setStateInformation (const void* data, int sizeInBytes) override;
+    void getStateInformation(juce::MemoryBlock& destData) override;
+    void setStateInformation(const void* data, int sizeInBytes) override;
 
     //==============================================================================
     // For the editor.
@@ -66,7 +65,7 @@ public:
 
     // Message thread: copies the newest snapshot the audio thread published (about 30 per
     // second of audio) into `out`; false when nothing new was published since the last call.
-    bool pullSnapshot (snaresim::DrumSnapshot& out) { return player.pullSnapshot (out); }
+    bool pullSnapshot(snaresim::DrumSnapshot& out) { return player.pullSnapshot(out); }
 
     // Share of the real-time budget the last blocks used (smoothed; 0..1, above 1 when the
     // processor cannot keep up) and the worst recent block.
@@ -99,7 +98,7 @@ public:
     // Message thread: sets every parameter of the drum to `values` (as a host's automation
     // would, one gesture each; keep_up, the machine's, stays) and builds the new model now if it
     // needs one. Programs and preset files.
-    void applyParameters (const snaresim::ParameterSet& values);
+    void applyParameters(const snaresim::ParameterSet& values);
 
     // True when the model playing now could not be built from the parameters and fell back
     // to the default parameter set.
@@ -126,12 +125,12 @@ public:
     juce::String playNotice() const;
     // Measures Quality's drums with `m` instead of timing them (tests: a slower machine). Every
     // processor made after setDefaultQualityMeasurement starts with its `m` (the test runner's).
-    void setQualityMeasurement (snaresim::KeepUpCheck::Measurement m) { qualityCheck.setMeasurement (std::move (m)); }
-    static void setDefaultQualityMeasurement (snaresim::KeepUpCheck::Measurement m);
+    void setQualityMeasurement(snaresim::KeepUpCheck::Measurement m) { qualityCheck.setMeasurement(std::move(m)); }
+    static void setDefaultQualityMeasurement(snaresim::KeepUpCheck::Measurement m);
     int qualityMeasurements() const noexcept { return qualityCheck.measurementsDone(); }
 
     // The host renders offline (any thread; VST3 hosts call it from the audio thread).
-    void setNonRealtime (bool isNonRealtime) noexcept override;
+    void setNonRealtime(bool isNonRealtime) noexcept override;
 
     // Models installed by the audio thread so far (prepareToPlay and background builds).
     int getModelSwapCount() const noexcept { return player.modelSwapCount(); }
@@ -142,42 +141,42 @@ public:
 
 private:
     void handleAsyncUpdate() override;
-    void applyProgram (int index);
+    void applyProgram(int index);
     snaresim::ParameterSet hostParameters() const;
-    bool playsAirBox() const noexcept;      // the drum playing is in the air box (audio thread)
-    snaresim::KeepUpCheck::Verdict askKeepUp (const snaresim::ParameterSet& params) const;
+    bool playsAirBox() const noexcept; // the drum playing is in the air box (audio thread)
+    snaresim::KeepUpCheck::Verdict askKeepUp(const snaresim::ParameterSet& params) const;
     // The air model as it plays (currentParameters), Quality as chosen.
-    snaresim::ParameterSet withAirPolicy (snaresim::ParameterSet params) const;
+    snaresim::ParameterSet withAirPolicy(snaresim::ParameterSet params) const;
     // Real time may play a lower Quality than `params` ask (keep_up on, not the air box).
-    bool lowersQuality (const snaresim::ParameterSet& params) const;
-    snaresim::KeepUpCheck::Verdict askQuality (const snaresim::ParameterSet& params) const;
+    bool lowersQuality(const snaresim::ParameterSet& params) const;
+    snaresim::KeepUpCheck::Verdict askQuality(const snaresim::ParameterSet& params) const;
     // `params` at the bandwidth real time plays: the chosen one, or the first rung below it
     // (each 0.8 of the one above, down to the control's least) not measured too slow.
-    snaresim::ParameterSet keptUp (snaresim::ParameterSet params) const;
+    snaresim::ParameterSet keptUp(snaresim::ParameterSet params) const;
 
     juce::AudioProcessorValueTreeState apvts;
     std::array<std::atomic<float>*, snaresim::kNumParameters> rawParameters {};
 
     // Everything between the host and the drum: smoothing, events, model hand-off, guard, meters.
     snaresim::DrumPlayer player;
-    std::array<snaresim::PlayerEvent, 1024> events {};     // one block's MIDI, translated (audio thread)
+    std::array<snaresim::PlayerEvent, 1024> events {}; // one block's MIDI, translated (audio thread)
 
     // --- the air box ----------------------------------------------------------------------
-    std::atomic<bool> offline { false };        // the host renders offline (setNonRealtime)
-    std::atomic<double> preparedRate { 0.0 };   // prepareToPlay's sample rate and block size
+    std::atomic<bool> offline { false };      // the host renders offline (setNonRealtime)
+    std::atomic<double> preparedRate { 0.0 }; // prepareToPlay's sample rate and block size
     std::atomic<int> preparedBlockSize { 0 };
-    mutable snaresim::KeepUpCheck keepUp;       // whether the air box keeps up in real time here
-    bool offlineInBlocks = false;               // `offline` as processBlock last saw it (audio thread)
+    mutable snaresim::KeepUpCheck keepUp;           // whether the air box keeps up in real time here
+    bool offlineInBlocks = false;                   // `offline` as processBlock last saw it (audio thread)
     mutable std::atomic<bool> airBoxLive { false }; // real time plays the air box (it keeps up here)
 
     // --- Quality in real time -------------------------------------------------------------
-    mutable snaresim::KeepUpCheck qualityCheck;     // whether a bandwidth keeps up here
-    mutable std::atomic<double> playedBandwidth { 0.0 };    // what currentParameters last chose
+    mutable snaresim::KeepUpCheck qualityCheck;          // whether a bandwidth keeps up here
+    mutable std::atomic<double> playedBandwidth { 0.0 }; // what currentParameters last chose
 
     // --- programs --------------------------------------------------------------------------
     std::atomic<int> currentProgram { 0 };
-    std::atomic<int> programToApply { -1 };     // set inside processBlock, applied on the message thread
-    std::atomic<juce::Thread::ThreadID> processingThread { nullptr };   // while in processBlock
+    std::atomic<int> programToApply { -1 };                           // set inside processBlock, applied on the message thread
+    std::atomic<juce::Thread::ThreadID> processingThread { nullptr }; // while in processBlock
 
-    JUCE_DECLARE_NON_COPYABLE_WITH_LEAK_DETECTOR (SnareSimAudioProcessor)
+    JUCE_DECLARE_NON_COPYABLE_WITH_LEAK_DETECTOR(SnareSimAudioProcessor)
 };

@@ -12,48 +12,48 @@
 namespace snaresim::plugin
 {
 
-void PluginState::write (juce::AudioProcessorValueTreeState& parameters, juce::MemoryBlock& destination)
+void PluginState::write(juce::AudioProcessorValueTreeState& parameters, juce::MemoryBlock& destination)
 {
     auto state = parameters.copyState();
 
     if (auto xml = state.createXml())
     {
-        xml->setAttribute (versionAttribute, version);
-        juce::AudioProcessor::copyXmlToBinary (*xml, destination);
+        xml->setAttribute(versionAttribute, version);
+        juce::AudioProcessor::copyXmlToBinary(*xml, destination);
     }
 }
 
-bool PluginState::read (juce::AudioProcessorValueTreeState& parameters, const void* data, int sizeInBytes)
+bool PluginState::read(juce::AudioProcessorValueTreeState& parameters, const void* data, int sizeInBytes)
 {
     if (data == nullptr || sizeInBytes <= 0)
         return false;
 
-    const auto xml = juce::AudioProcessor::getXmlFromBinary (data, sizeInBytes);
+    const auto xml = juce::AudioProcessor::getXmlFromBinary(data, sizeInBytes);
 
-    if (xml == nullptr || ! xml->hasTagName (treeType))
+    if (xml == nullptr || ! xml->hasTagName(treeType))
         return false;
 
     // Older versions' keys migrate as the schema says, and what they did not hold is implied
     // (impliedParameters); unknown keys are ignored; missing parameters take their defaults.
-    const int stateVersion = xml->getIntAttribute (versionAttribute, 0);
+    const int stateVersion = xml->getIntAttribute(versionAttribute, 0);
     std::array<std::optional<double>, kNumParameters> values {};
 
     for (const auto* child : xml->getChildIterator())
     {
-        if (! child->hasTagName ("PARAM") || ! child->hasAttribute ("id") || ! child->hasAttribute ("value"))
+        if (! child->hasTagName("PARAM") || ! child->hasAttribute("id") || ! child->hasAttribute("value"))
             continue;
 
-        const double value = child->getDoubleAttribute ("value");
-        if (! std::isfinite (value))
+        const double value = child->getDoubleAttribute("value");
+        if (! std::isfinite(value))
             continue;
 
-        if (const auto migrated = migrateParameter (stateVersion, child->getStringAttribute ("id").toStdString(), value))
-            values[static_cast<std::size_t> (migrated->first)] = migrated->second;
+        if (const auto migrated = migrateParameter(stateVersion, child->getStringAttribute("id").toStdString(), value))
+            values[static_cast<std::size_t>(migrated->first)] = migrated->second;
     }
 
     for (const auto& implied : impliedParameters())
-        if (stateVersion < implied.beforeVersion && ! values[static_cast<std::size_t> (implied.id)].has_value())
-            values[static_cast<std::size_t> (implied.id)] = implied.value;
+        if (stateVersion < implied.beforeVersion && ! values[static_cast<std::size_t>(implied.id)].has_value())
+            values[static_cast<std::size_t>(implied.id)] = implied.value;
 
     // A complete tree: replaceState leaves parameters missing from it at their current values.
     // Its children in the order the processor's own tree has them (by ID), so that a restored
@@ -61,23 +61,23 @@ bool PluginState::read (juce::AudioProcessorValueTreeState& parameters, const vo
     std::array<const ParameterSpec*, kNumParameters> byKey {};
     for (std::size_t i = 0; i < byKey.size(); ++i)
         byKey[i] = &parameterSpecs()[i];
-    std::sort (byKey.begin(), byKey.end(), [] (const auto* a, const auto* b) { return a->key < b->key; });
+    std::sort(byKey.begin(), byKey.end(), [](const auto* a, const auto* b) { return a->key < b->key; });
 
-    juce::ValueTree tree (treeType);
+    juce::ValueTree tree(treeType);
 
     for (const auto* spec : byKey)
     {
-        const auto& stored = values[static_cast<std::size_t> (spec->id)];
+        const auto& stored = values[static_cast<std::size_t>(spec->id)];
         // As a float: the parameter holds one, and the tree must say what it holds.
-        const double value = (float) (stored.has_value() ? sanitise (*spec, *stored) : spec->defaultValue);
+        const double value = (float) (stored.has_value() ? sanitise(*spec, *stored) : spec->defaultValue);
 
-        juce::ValueTree param ("PARAM");
-        param.setProperty ("id", juce::String (std::string (spec->key)), nullptr);
-        param.setProperty ("value", value, nullptr);
-        tree.appendChild (param, nullptr);
+        juce::ValueTree param("PARAM");
+        param.setProperty("id", juce::String(std::string(spec->key)), nullptr);
+        param.setProperty("value", value, nullptr);
+        tree.appendChild(param, nullptr);
     }
 
-    parameters.replaceState (tree);
+    parameters.replaceState(tree);
     return true;
 }
 

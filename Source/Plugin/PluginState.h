@@ -19,10 +19,10 @@ struct PluginState
     static constexpr const char* versionAttribute = "stateVersion";
     static constexpr const char* treeType = "SnareSimState";
 
-    static void write (juce::AudioProcessorValueTreeState& parameters, juce::MemoryBlock& destination);
+    static void write(juce::AudioProcessorValueTreeState& parameters, juce::MemoryBlock& destination);
 
     // True when the data was a SnareSim state and the parameters were set from it.
-    static bool read (juce::AudioProcessorValueTreeState& parameters, const void* data, int sizeInBytes);
+    static bool read(juce::AudioProcessorValueTreeState& parameters, const void* data, int sizeInBytes);
 };
 
 } // namespace snaresim::plugin

@@ -12,11 +12,11 @@ namespace snaresim::ui
 // Message thread. Sets every parameter from the file: its values, the defaults for the rest.
 // Returns what went wrong (one line naming the file, and the line of it), empty on success;
 // on failure no parameter changes.
-juce::String loadPresetFile (SnareSimAudioProcessor& processor, const juce::File& file);
+juce::String loadPresetFile(SnareSimAudioProcessor& processor, const juce::File& file);
 
 // Writes the parameters as the host holds them (those that differ from their defaults), named
 // after the file. The file is replaced whole or not at all. Returns what went wrong, empty on
 // success.
-juce::String savePresetFile (const SnareSimAudioProcessor& processor, const juce::File& file);
+juce::String savePresetFile(const SnareSimAudioProcessor& processor, const juce::File& file);
 
 } // namespace snaresim::ui

@@ -13,12 +13,12 @@ namespace snaresim::ui
 class CpuMeter final : public juce::Component, public juce::SettableTooltipClient
 {
 public:
-    explicit CpuMeter (EditorLookAndFeel&);
+    explicit CpuMeter(EditorLookAndFeel&);
 
     // Loads as fractions of the audio deadline (1 = the whole block period).
-    void setLoad (float load, float peak);
+    void setLoad(float load, float peak);
 
-    void paint (juce::Graphics&) override;
+    void paint(juce::Graphics&) override;
 
 private:
     EditorLookAndFeel& look;
@@ -29,11 +29,11 @@ private:
 class StatusReadout final : public juce::Component, public juce::SettableTooltipClient
 {
 public:
-    StatusReadout (EditorLookAndFeel&, juce::String caption, juce::String tooltip);
+    StatusReadout(EditorLookAndFeel&, juce::String caption, juce::String tooltip);
 
-    void setValue (long long value, bool warn);
+    void setValue(long long value, bool warn);
 
-    void paint (juce::Graphics&) override;
+    void paint(juce::Graphics&) override;
 
     // Width that fits the caption.
     int getPreferredWidth() const;

@@ -16,15 +16,15 @@ namespace snaresim
 
 struct AirSpeed
 {
-    long points = 0;                // air nodes
-    double spacing_m = 0.0;         // h_a
-    int threads = 1;                // for airThreadsStep_s
-    int steps = 0;                  // steps per round
+    long points = 0;        // air nodes
+    double spacing_m = 0.0; // h_a
+    int threads = 1;        // for airThreadsStep_s
+    int steps = 0;          // steps per round
     int rounds = 0;
-    double bareStep_s = 0.0;        // bare stencil, double, one thread: seconds per step
-    double bareFloatStep_s = 0.0;   // the same in single precision
-    double airStep_s = 0.0;         // AirBox::computeNext (walls, shell, cut links, sigma_a), one thread
-    double airThreadsStep_s = 0.0;  // the same with `threads` threads
+    double bareStep_s = 0.0;       // bare stencil, double, one thread: seconds per step
+    double bareFloatStep_s = 0.0;  // the same in single precision
+    double airStep_s = 0.0;        // AirBox::computeNext (walls, shell, cut links, sigma_a), one thread
+    double airThreadsStep_s = 0.0; // the same with `threads` threads
 
     static double rate(long points, double step_s) { return step_s > 0.0 ? (double) points / step_s : 0.0; }
     double bareRate() const { return rate(points, bareStep_s); }

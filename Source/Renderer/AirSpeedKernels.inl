@@ -3,8 +3,7 @@
 
 // The bare loop: out = a0 u + a1 (6 neighbours) - up over every node of a padded nx x ny x nz grid.
 template <class T>
-void bareLoop(T* __restrict out, const T* __restrict u, const T* __restrict up, int nx, int ny,
-              int nz, T a0, T a1)
+void bareLoop(T* __restrict out, const T* __restrict u, const T* __restrict up, int nx, int ny, int nz, T a0, T a1)
 {
     const long sx = nx + 2, sxy = sx * (ny + 2);
     for (int iz = 1; iz <= nz; ++iz)

@@ -77,10 +77,7 @@ AtomicFile::~AtomicFile()
     }
 }
 
-std::string AtomicFile::displayName() const
-{
-    return inQuotes(targetPath.string());
-}
+std::string AtomicFile::displayName() const { return inQuotes(targetPath.string()); }
 
 void AtomicFile::commit()
 {

@@ -23,8 +23,7 @@ namespace
 // A WAV or AIFF file through JUCE's reader of that format.
 MonoAudio readWithJuce(const std::filesystem::path& file, juce::AudioFormat& format, const std::string& name)
 {
-    std::unique_ptr<juce::AudioFormatReader> reader(
-        format.createReaderFor(new juce::FileInputStream(juce::File(file.string())), true));
+    std::unique_ptr<juce::AudioFormatReader> reader(format.createReaderFor(new juce::FileInputStream(juce::File(file.string())), true));
     if (reader == nullptr)
         cannotRead(file, "not a " + name + " file JUCE can read");
     if (reader->lengthInSamples <= 0 || reader->numChannels < 1)
@@ -80,8 +79,8 @@ MonoAudio readFlac(const std::filesystem::path& file)
     if (! decoder)
         cannotRead(file, "out of memory");
     FlacState state;
-    if (FLAC__stream_decoder_init_file(decoder.get(), file.c_str(), onFrame, onMetadata, onError, &state)
-        != FLAC__STREAM_DECODER_INIT_STATUS_OK)
+    if (FLAC__stream_decoder_init_file(decoder.get(), file.c_str(), onFrame, onMetadata, onError, &state) !=
+        FLAC__STREAM_DECODER_INIT_STATUS_OK)
         cannotRead(file, "the FLAC decoder cannot open it");
     const bool decoded = FLAC__stream_decoder_process_until_end_of_stream(decoder.get()) != 0;
     FLAC__stream_decoder_finish(decoder.get());

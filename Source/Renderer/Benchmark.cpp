@@ -62,7 +62,7 @@ RenderStats benchmarkDrum(const ParameterSet& params, const DrumConfig& config, 
     std::vector<float> block((std::size_t) blockSize);
     std::vector<PlayerEvent> events;
     events.reserve(plan.strikes.size());
-    const auto numBlocks = (std::size_t) ((plan.numSamples + blockSize - 1) / blockSize);
+    const auto numBlocks = (std::size_t)((plan.numSamples + blockSize - 1) / blockSize);
     std::vector<Clock::duration> fastest(numBlocks, Clock::duration::max());
     Clock::duration rawWorst {}, slowestRun {}, fastestRun = Clock::duration::max();
 
@@ -82,7 +82,7 @@ RenderStats benchmarkDrum(const ParameterSet& params, const DrumConfig& config, 
             player.startWith(std::make_unique<Drum>(config), params); // the air options (--threads, --box, ...) apply
         else
             player.prepareAndStart(plan.sampleRate_Hz, params);
-        player.stopBuilding();  // the parameters never change: nothing to build meanwhile
+        player.stopBuilding(); // the parameters never change: nothing to build meanwhile
         if (player.drum() == nullptr)
             throw std::runtime_error("the drum cannot be built at this sample rate");
         player.drum()->setProfiling(profiled);

@@ -22,7 +22,7 @@
 namespace snaresim::render
 {
 
-inline constexpr int kBenchNote = 38;                // GM acoustic snare: the centre strike
+inline constexpr int kBenchNote = 38; // GM acoustic snare: the centre strike
 inline constexpr double kDefaultScenarioInterval_s = 0.5;
 inline constexpr int kRollStrikes = 16;
 inline constexpr double kRollStart_s = 0.1;

@@ -2,8 +2,8 @@
 
 #include "Errors.h"
 #include "Match.h"
-#include "ParameterText.h"
 #include "Microphones.h"
+#include "ParameterText.h"
 #include "Presets.h"
 
 #include <CLI/CLI.hpp>
@@ -27,10 +27,7 @@ namespace snaresim::render
 namespace
 {
 
-[[noreturn]] void fail(const std::string& message)
-{
-    throw UserError(message);
-}
+[[noreturn]] void fail(const std::string& message) { throw UserError(message); }
 
 // A finite decimal number, the whole text (std::from_chars: no locale, no leading spaces).
 double parseNumber(std::string_view text, std::string_view what)
@@ -71,8 +68,7 @@ Strike parseHit(std::string_view text)
     hit.velocity = parseInteger(text.substr(colon + 1), "--hit velocity");
 
     if (hit.time_s < 0.0 || hit.time_s > kMaxSeconds)
-        fail("--hit: time " + inQuotes(text.substr(0, colon)) + " is outside 0.."
-             + std::to_string((int) kMaxSeconds) + " s");
+        fail("--hit: time " + inQuotes(text.substr(0, colon)) + " is outside 0.." + std::to_string((int) kMaxSeconds) + " s");
     if (hit.velocity < 1 || hit.velocity > 127)
         fail("--hit: velocity " + inQuotes(text.substr(colon + 1)) + " is outside 1..127");
     return hit;
@@ -99,8 +95,8 @@ double parseParameterValue(const ParameterSpec& parameter, std::string_view text
 
     if (! value)
     {
-        if (named && ! text.empty() && ! std::isdigit((unsigned char) text.front()) && text.front() != '+'
-            && text.front() != '-' && text.front() != '.')
+        if (named && ! text.empty() && ! std::isdigit((unsigned char) text.front()) && text.front() != '+' && text.front() != '-' &&
+            text.front() != '.')
             fail(option + ": " + inQuotes(text) + " is not one of " + choiceList(parameter));
         // A number followed by a unit the parameter does not have; otherwise why it is not a number.
         std::string_view digits = text.substr(! text.empty() && text.front() == '+' ? 1 : 0);
@@ -109,8 +105,8 @@ double parseParameterValue(const ParameterSpec& parameter, std::string_view text
         if (ec != std::errc {} || end == digits.data() + digits.size() || ! std::isfinite(number))
             parseNumber(text, option);
         const auto unit = valueFormat(parameter);
-        fail(option + ": " + inQuotes(text) + " is not a number in " + (unit.unit.empty() ? std::string("no unit") : unit.unit)
-             + (unit.schemaUnit != unit.unit ? " or " + unit.schemaUnit : std::string()));
+        fail(option + ": " + inQuotes(text) + " is not a number in " + (unit.unit.empty() ? std::string("no unit") : unit.unit) +
+             (unit.schemaUnit != unit.unit ? " or " + unit.schemaUnit : std::string()));
     }
     if (parameter.kind == ParamKind::continuous || *value == std::round(*value))
         return *value;
@@ -187,8 +183,8 @@ int parseIntegerIn(std::string_view text, std::string_view option, int lo, int h
 {
     const int n = parseInteger(text, option);
     if (n < lo || n > hi)
-        fail(std::string(option) + ": " + inQuotes(text) + " is outside " + std::to_string(lo) + ".." + std::to_string(hi)
-             + (unit.empty() ? "" : " ") + std::string(unit));
+        fail(std::string(option) + ": " + inQuotes(text) + " is outside " + std::to_string(lo) + ".." + std::to_string(hi) +
+             (unit.empty() ? "" : " ") + std::string(unit));
     return n;
 }
 
@@ -304,8 +300,7 @@ double parseSeconds(std::string_view text)
 {
     const double seconds = parseNumber(text, "--seconds");
     if (seconds <= 0.0 || seconds > kMaxSeconds)
-        fail("--seconds: " + inQuotes(text) + " must be greater than 0 and at most "
-             + std::to_string((int) kMaxSeconds));
+        fail("--seconds: " + inQuotes(text) + " must be greater than 0 and at most " + std::to_string((int) kMaxSeconds));
     return seconds;
 }
 
@@ -404,11 +399,10 @@ auto parseValue(const Parse& parse, std::string_view value, std::string_view opt
 class OptionTable
 {
 public:
-    explicit OptionTable(const std::vector<std::string>& args)
-        : args(args)
+    explicit OptionTable(const std::vector<std::string>& args) : args(args)
     {
-        app.set_help_flag();   // --help and -h are looked for before (parseCommandLine)
-        app.allow_extras();    // unknown options and stray arguments: failOnExtras
+        app.set_help_flag(); // --help and -h are looked for before (parseCommandLine)
+        app.allow_extras();  // unknown options and stray arguments: failOnExtras
     }
 
     // An option with a value, given at most once: slot = parse(VALUE).
@@ -424,9 +418,8 @@ public:
     template <typename T, typename Parse>
     void each(std::string_view names, std::vector<T>& list, Parse parse)
     {
-        addValueOption(names, [&list, parse](std::string_view value, const std::string& option) {
-            list.push_back(parseValue(parse, value, option));
-        });
+        addValueOption(
+            names, [&list, parse](std::string_view value, const std::string& option) { list.push_back(parseValue(parse, value, option)); });
     }
 
     // An option without a value; it may be repeated.
@@ -452,8 +445,7 @@ public:
         // CLI11 takes "--opt=" as "--opt" with the next argument as its value; it is an empty value.
         std::vector<std::string> tokens;
         for (const auto& arg : args)
-            if (const auto equals = arg.find('=');
-                equals == arg.size() - 1 && longValueOptions.count(arg.substr(0, equals)) > 0)
+            if (const auto equals = arg.find('='); equals == arg.size() - 1 && longValueOptions.count(arg.substr(0, equals)) > 0)
             {
                 tokens.push_back(arg.substr(0, equals));
                 tokens.emplace_back();
@@ -832,7 +824,8 @@ Matching a recording:
                         snare_tension, snare_count, strike_position, mallet_mass,
                         mallet_stiffness, mic_top, mic_bottom, mic_room, velocity
                         (with --set snares_engaged=off, not the two snare ones)
-  --match-budget N      renders the match may use, 12..100000 (default )" + std::to_string(kDefaultMatchBudget) + R"()
+  --match-budget N      renders the match may use, 12..100000 (default )" +
+           std::to_string(kDefaultMatchBudget) + R"()
   --match-seed N        the search's random numbers, 0..2147483647 (default 20240611):
                         the same seed gives the same preset file; another explores other
                         candidates (the distance varies with it: try a few)
@@ -857,7 +850,8 @@ Distance to recordings:
                         fingerprint_db)). A file unreadable, silent or without a strike
                         (its level 100-300 ms after the onset not 3 dB below the first
                         30 ms'), or a --ref matching no file: exit 2, nothing written.
-)" + presetLine() + R"(
+)" + presetLine() +
+           R"(
 Environment: SNARESIM_VECTOR_TARGET=baseline|avx2|avx512 runs the engine's hot loops on
 that build (default: the widest the processor has; one it lacks: a line on stderr and the
 widest). baseline rounds the same on every x86-64 processor: the golden renders use it.

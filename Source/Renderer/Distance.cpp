@@ -65,9 +65,12 @@ void checkDistanceOptions(const RenderJob& job)
     // a render's options, and those of the drum and the search
     const std::pair<bool, const char*> refused[] {
         { job.firstRenderOption() != nullptr, job.firstRenderOption() },
-        { job.preset.has_value(), "--preset" },    { ! job.overrides.empty(), "--set" },
-        { job.airModel.has_value(), "--model" },   { job.matchParams.has_value(), "--match-params" },
-        { job.matchBudget.has_value(), "--match-budget" }, { job.matchSeed.has_value(), "--match-seed" },
+        { job.preset.has_value(), "--preset" },
+        { ! job.overrides.empty(), "--set" },
+        { job.airModel.has_value(), "--model" },
+        { job.matchParams.has_value(), "--match-params" },
+        { job.matchBudget.has_value(), "--match-budget" },
+        { job.matchSeed.has_value(), "--match-seed" },
     };
     for (const auto& [given, option] : refused)
         if (given)
@@ -105,7 +108,7 @@ StrikeDistances measureDistances(const fs::path& file, const std::string& name, 
     strike.fingerprint = fingerprintOfFile(file, name);
     for (const auto& reference : references)
         strike.distances_dB.push_back(strikeDistance_dB(strike.fingerprint, reference.fingerprint));
-    strike.nearest = (std::size_t) (std::min_element(strike.distances_dB.begin(), strike.distances_dB.end()) - strike.distances_dB.begin());
+    strike.nearest = (std::size_t)(std::min_element(strike.distances_dB.begin(), strike.distances_dB.end()) - strike.distances_dB.begin());
     return strike;
 }
 
@@ -114,8 +117,8 @@ std::string distanceSummary(const DistanceReport& report)
     std::string s;
     for (const auto& strike : report.strikes)
     {
-        s += strike.name + ": nearest " + report.references[strike.nearest].name
-             + formatted(" at %.2f dB (of %d recordings)\n", strike.nearest_dB(), (int) report.references.size());
+        s += strike.name + ": nearest " + report.references[strike.nearest].name +
+             formatted(" at %.2f dB (of %d recordings)\n", strike.nearest_dB(), (int) report.references.size());
         for (std::size_t i = 0; i < report.references.size(); ++i)
             s += formatted("  %6.2f dB  ", strike.distances_dB[i]) + report.references[i].name + "\n";
     }
@@ -163,8 +166,7 @@ int runDistance(const RenderJob& job)
     report.references = loadReferences(job.references);
     for (const auto& file : job.distanceFiles)
         report.strikes.push_back(measureDistances(file, file.string(), report.references));
-    std::cout << (job.json ? juce::JSON::toString(distanceJson(report), true).toStdString() + "\n" : distanceSummary(report))
-              << std::flush;
+    std::cout << (job.json ? juce::JSON::toString(distanceJson(report), true).toStdString() + "\n" : distanceSummary(report)) << std::flush;
     return 0;
 }
 

@@ -48,9 +48,8 @@ EnergyCsvWriter::~EnergyCsvWriter() = default;
 
 void EnergyCsvWriter::writeFailed() const
 {
-    const auto reason = stream != nullptr && stream->getStatus().failed()
-                            ? stream->getStatus().getErrorMessage().toStdString()
-                            : std::string("write error");
+    const auto reason = stream != nullptr && stream->getStatus().failed() ? stream->getStatus().getErrorMessage().toStdString()
+                                                                          : std::string("write error");
     throw UserError("cannot write " + file.displayName() + ": " + reason);
 }
 

@@ -15,7 +15,7 @@ namespace snaresim::render
 namespace
 {
 
-constexpr std::int64_t kMaxBuckets = 4000; // about 7 per pixel column of a panel
+constexpr std::int64_t kMaxBuckets = 4000;             // about 7 per pixel column of a panel
 constexpr int kDecades = EnergyPlot::componentDecades; // shown by the component panel
 
 struct SeriesStyle
@@ -55,7 +55,7 @@ void EnergyPlot::add(std::int64_t firstSample, std::span<const EnergyLedger> row
         const auto& e = rows[i];
         values[balance] = e.balance();
         for (int t = 0; t < (int) termNames.size(); ++t)
-            values[(std::size_t) (firstTerm + t)] = e[t];
+            values[(std::size_t)(firstTerm + t)] = e[t];
         values[(std::size_t) total()] = e.total();
         if (! std::all_of(values.begin(), values.end(), [](double v) { return std::isfinite(v); }))
         {
@@ -148,10 +148,9 @@ void EnergyPlot::drawBalancePanel(juce::Graphics& g, juce::Rectangle<float> area
     const auto xTicks = plot::niceTicks(0.0, durationMs, 8);
     const auto yTicks = plot::niceTicks(lo, hi, 8);
     const double xStep = plot::tickStep(xTicks);
-    plot::drawAxes(g, axes, plot::labelled(xTicks, [&](double v) { return plot::decimalLabel(v, xStep); }),
-                   plot::scientificTicks(yTicks),
-                   { "Normalised variation of the energy balance", "time (ms)",
-                     "(h\xe2\x81\xbf \xe2\x88\x92 h\xe2\x81\xb0) / h\xe2\x81\xb0" });
+    plot::drawAxes(
+        g, axes, plot::labelled(xTicks, [&](double v) { return plot::decimalLabel(v, xStep); }), plot::scientificTicks(yTicks),
+        { "Normalised variation of the energy balance", "time (ms)", "(h\xe2\x81\xbf \xe2\x88\x92 h\xe2\x81\xb0) / h\xe2\x81\xb0" });
 
     juce::Graphics::ScopedSaveState state(g);
     g.reduceClipRegion(area.toNearestInt());
@@ -160,9 +159,8 @@ void EnergyPlot::drawBalancePanel(juce::Graphics& g, juce::Rectangle<float> area
     {
         g.setColour(juce::Colours::darkgrey);
         g.setFont(plot::font(17.0f));
-        g.drawText(plot::toJuce(nonfiniteRows > 0 ? "the energy went non-finite"
-                                                   : "no strike played: h\xe2\x81\xb0 is undefined"),
-                   area, juce::Justification::centred, false);
+        g.drawText(plot::toJuce(nonfiniteRows > 0 ? "the energy went non-finite" : "no strike played: h\xe2\x81\xb0 is undefined"), area,
+                   juce::Justification::centred, false);
         return;
     }
 
@@ -183,9 +181,9 @@ void EnergyPlot::drawBalancePanel(juce::Graphics& g, juce::Rectangle<float> area
     // What h^0 is.
     g.setFont(plot::font(15.0f));
     g.setColour(juce::Colour(0xff404040));
-    const auto note = "h\xe2\x81\xb0 = " + formatted("%.4g", referenceTotal) + " J at "
-                      + formatted("%.3f", (double) referenceSample / sampleRate * 1000.0) + " ms (after the first strike)"
-                      + (nonfiniteRows > 0 ? "; non-finite rows skipped" : "");
+    const auto note = "h\xe2\x81\xb0 = " + formatted("%.4g", referenceTotal) + " J at " +
+                      formatted("%.3f", (double) referenceSample / sampleRate * 1000.0) + " ms (after the first strike)" +
+                      (nonfiniteRows > 0 ? "; non-finite rows skipped" : "");
     g.drawText(plot::toJuce(note), area.reduced(8.0f).withHeight(20.0f), juce::Justification::topLeft, false);
 }
 
@@ -195,7 +193,7 @@ void EnergyPlot::drawComponentPanel(juce::Graphics& g, juce::Rectangle<float> ar
     auto styleOf = [&](int s) {
         if (s == total())
             return kTotalStyle;
-        return SeriesStyle { kTermColours[(std::size_t) (s - firstTerm) % std::size(kTermColours)], kTermThickness };
+        return SeriesStyle { kTermColours[(std::size_t)(s - firstTerm) % std::size(kTermColours)], kTermThickness };
     };
 
     // Logarithmic, kDecades below the decade above the largest energy: the strike's energy
@@ -284,8 +282,8 @@ void EnergyPlot::drawComponentPanel(juce::Graphics& g, juce::Rectangle<float> ar
         bool everPositive = false;
         for (std::size_t index = 0; index < numBuckets; ++index)
             everPositive = everPositive || (bucketAt(index, s).filled && bucketAt(index, s).max > 0.0);
-        const auto name = (s == total() ? std::string("total") : std::string(termNames[(std::size_t) (s - firstTerm)]))
-                        + (everPositive ? "" : " = 0");
+        const auto name =
+            (s == total() ? std::string("total") : std::string(termNames[(std::size_t)(s - firstTerm)])) + (everPositive ? "" : " = 0");
 
         const auto style = styleOf(s);
         g.setColour(style.colour);

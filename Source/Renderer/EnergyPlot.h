@@ -34,8 +34,7 @@ public:
 
     // firstStrikeSample: the sample of the first strike played (none: no reference h^0).
     // layout: a ledger with the terms the rows will have (the drum's energy()).
-    EnergyPlot(std::int64_t numSamples, double sampleRate_Hz, std::optional<std::int64_t> firstStrikeSample,
-               const EnergyLedger& layout);
+    EnergyPlot(std::int64_t numSamples, double sampleRate_Hz, std::optional<std::int64_t> firstStrikeSample, const EnergyLedger& layout);
 
     // rows[i] is the ledger after sample firstSample + i (with the terms of the layout).
     void add(std::int64_t firstSample, std::span<const EnergyLedger> rows);
@@ -61,10 +60,7 @@ public:
     // The component panel's y range, logarithmic: from the decade above 1.05 times the largest
     // energy plotted, componentDecades decades down.
     static constexpr int componentDecades = 7;
-    static double componentTop(double largest)
-    {
-        return largest > 0.0 ? std::pow(10.0, std::ceil(std::log10(largest * 1.05))) : 1.0;
-    }
+    static double componentTop(double largest) { return largest > 0.0 ? std::pow(10.0, std::ceil(std::log10(largest * 1.05))) : 1.0; }
 
 private:
     // Series: the balance (left panel), then the ledger's terms, then the total.

@@ -10,9 +10,9 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 #include <thread>
 #include <utility>
-#include <string>
 
 namespace snaresim::render
 {
@@ -20,9 +20,9 @@ namespace snaresim::render
 bool isPresetFile(std::string_view text)
 {
     const auto ext = kPresetFileExtension;
-    if (text.size() >= ext.size()
-        && std::equal(ext.begin(), ext.end(), text.end() - (std::ptrdiff_t) ext.size(),
-                      [](char a, char b) { return std::tolower((unsigned char) a) == std::tolower((unsigned char) b); }))
+    if (text.size() >= ext.size() && std::equal(ext.begin(), ext.end(), text.end() - (std::ptrdiff_t) ext.size(), [](char a, char b) {
+            return std::tolower((unsigned char) a) == std::tolower((unsigned char) b);
+        }))
         return true;
     return text.find('/') != std::string_view::npos; // no factory preset's name holds one
 }
@@ -50,8 +50,8 @@ ParameterSet makeParameters(const RenderJob& job)
         std::string names;
         for (const auto& preset : factoryPresets())
             names += (names.empty() ? "" : ", ") + std::string(preset.name);
-        throw UserError("--preset: unknown preset '" + *job.preset + "' (available: " + names
-                        + "; or a preset file: a path ending in " + std::string(kPresetFileExtension) + ")");
+        throw UserError("--preset: unknown preset '" + *job.preset + "' (available: " + names + "; or a preset file: a path ending in " +
+                        std::string(kPresetFileExtension) + ")");
     }
 
     // --model after the preset, before --set (a later --set air_model=... wins).
@@ -87,8 +87,10 @@ namespace
 void applyAirOptions(const RenderJob& job, DrumConfig& config)
 {
     const bool airBox = config.cavity.model == AirModel::airbox;
-    for (const auto& [given, option] : { std::pair { ! job.airMics.empty(), "--air-mic" }, { job.walls.has_value(), "--walls" },
-                                         { job.boxSize.has_value(), "--box" }, { job.boxMargin.has_value(), "--box-margin" },
+    for (const auto& [given, option] : { std::pair { ! job.airMics.empty(), "--air-mic" },
+                                         { job.walls.has_value(), "--walls" },
+                                         { job.boxSize.has_value(), "--box" },
+                                         { job.boxMargin.has_value(), "--box-margin" },
                                          { job.threads.has_value(), "--threads" } })
         if (given && ! airBox)
             throw UserError(std::string(option) + " applies to the air box only (--model airbox)");
@@ -104,9 +106,9 @@ void applyAirOptions(const RenderJob& job, DrumConfig& config)
     for (const auto& p : job.airMics)
     {
         if (std::hypot(p.x, p.y) <= R && std::abs(p.z) <= 0.5 * H)
-            throw UserError("--air-mic " + numberText(p.x) + "," + numberText(p.y) + "," + numberText(p.z)
-                            + ": inside the drum's shell (radius " + numberText(R) + " m, heads at z = +-" + numberText(0.5 * H)
-                            + " m); a microphone goes in the air around the drum");
+            throw UserError("--air-mic " + numberText(p.x) + "," + numberText(p.y) + "," + numberText(p.z) +
+                            ": inside the drum's shell (radius " + numberText(R) + " m, heads at z = +-" + numberText(0.5 * H) +
+                            " m); a microphone goes in the air around the drum");
         air.mics[(std::size_t) air.numMics++] = { p.x, p.y, p.z };
     }
     if (job.walls)
@@ -151,8 +153,7 @@ std::unique_ptr<Drum> makeDrum(const DrumConfig& config)
     }
     catch (const std::invalid_argument& e)
     {
-        throw UserError("the model cannot be simulated at " + numberText(config.sampleRate_Hz)
-                        + " Hz with these parameters: " + e.what());
+        throw UserError("the model cannot be simulated at " + numberText(config.sampleRate_Hz) + " Hz with these parameters: " + e.what());
     }
 }
 

@@ -10,17 +10,13 @@ namespace
 
 volatile std::sig_atomic_t pendingSignal = 0;
 
-extern "C" void recordSignal(int signalNumber)
-{
-    pendingSignal = signalNumber;
-}
+extern "C" void recordSignal(int signalNumber) { pendingSignal = signalNumber; }
 
 } // namespace
 
 Interrupted::Interrupted(int signalNumber)
     : std::runtime_error("interrupted by signal " + std::to_string(signalNumber)), signal(signalNumber)
-{
-}
+{}
 
 void installInterruptHandlers()
 {

@@ -56,10 +56,7 @@ fs::path resolved(const fs::path& path)
     return ec ? absolute : canonical;
 }
 
-bool sameFile(const fs::path& a, const fs::path& b)
-{
-    return resolved(a) == resolved(b);
-}
+bool sameFile(const fs::path& a, const fs::path& b) { return resolved(a) == resolved(b); }
 
 // Every output with its option, for the "same file" checks.
 std::vector<std::pair<std::string, fs::path>> outputsOf(const RenderJob& job)
@@ -155,9 +152,9 @@ int render(const RenderJob& commandLineJob)
     if (job.energyPlot)
     {
         energyPlotFile.emplace(*job.energyPlot);
-        energyPlot = std::make_unique<EnergyPlot>(
-            plan.numSamples, plan.sampleRate_Hz,
-            plan.strikes.empty() ? std::nullopt : std::optional(plan.strikes.front().sample), drum->energy());
+        energyPlot =
+            std::make_unique<EnergyPlot>(plan.numSamples, plan.sampleRate_Hz,
+                                         plan.strikes.empty() ? std::nullopt : std::optional(plan.strikes.front().sample), drum->energy());
     }
 
     std::optional<AtomicFile> spectrogramFile;
@@ -166,8 +163,8 @@ int render(const RenderJob& commandLineJob)
     if (job.spectrogram)
     {
         spectrogramFile.emplace(*job.spectrogram);
-        spectrogram = std::make_unique<Spectrogram>(
-            plan.numSamples, plan.sampleRate_Hz, std::string(micName(mic == MicOutput::all ? MicOutput::mix : mic)));
+        spectrogram = std::make_unique<Spectrogram>(plan.numSamples, plan.sampleRate_Hz,
+                                                    std::string(micName(mic == MicOutput::all ? MicOutput::mix : mic)));
     }
 
     std::optional<AtomicFile> snarePlotFile;
@@ -175,9 +172,8 @@ int render(const RenderJob& commandLineJob)
     if (job.snarePlot)
     {
         snarePlotFile.emplace(*job.snarePlot);
-        snarePlot = std::make_unique<SnarePlot>(
-            *drum, plan.numSamples, plan.sampleRate_Hz,
-            plan.strikes.empty() ? std::nullopt : std::optional(plan.strikes.front().sample));
+        snarePlot = std::make_unique<SnarePlot>(*drum, plan.numSamples, plan.sampleRate_Hz,
+                                                plan.strikes.empty() ? std::nullopt : std::optional(plan.strikes.front().sample));
         snarePlot->add(0, *drum); // the state before the first step (time 0), when in the window
     }
 
@@ -216,7 +212,8 @@ int render(const RenderJob& commandLineJob)
     wav.finish();
     if (distance) // the WAV as --distance reads it, before anything is committed
     {
-        distance->strikes.push_back(measureDistances(wavFile.temporary(), "the rendered strike " + job.output->string(), distance->references));
+        distance->strikes.push_back(
+            measureDistances(wavFile.temporary(), "the rendered strike " + job.output->string(), distance->references));
         distance->strikes.back().file = *absolutePath(job.output);
     }
     if (csv)
@@ -269,7 +266,7 @@ int benchmark(const RenderJob& commandLineJob)
     const auto midiStrikes = job.midiFile ? readMidiStrikes(*job.midiFile) : std::vector<Strike> {};
     const auto plan = makeRenderPlan(job, midiStrikes);
     const auto config = makeConfig(job, params); // no --lossless with --bench: makeDrumConfig as is
-    (void) makeDrum(config); // a config the engine refuses fails here, before any output
+    (void) makeDrum(config);                     // a config the engine refuses fails here, before any output
 
     std::optional<AtomicFile> wavFile;
     std::unique_ptr<WavWriter> wav;
@@ -279,14 +276,15 @@ int benchmark(const RenderJob& commandLineJob)
         wav = std::make_unique<WavWriter>(*wavFile, plan.sampleRate_Hz, 1);
     }
 
-    const auto stats = benchmarkDrum(params, config, plan, job.selectedBlockSize(), job.selectedRepeats(), [&](std::span<const float> block) {
-        throwIfInterrupted(); // once per block, outside the timed section
-        if (wav)
-        {
-            const float* channel = block.data();
-            wav->write(&channel, (int) block.size());
-        }
-    });
+    const auto stats =
+        benchmarkDrum(params, config, plan, job.selectedBlockSize(), job.selectedRepeats(), [&](std::span<const float> block) {
+            throwIfInterrupted(); // once per block, outside the timed section
+            if (wav)
+            {
+                const float* channel = block.data();
+                wav->write(&channel, (int) block.size());
+            }
+        });
 
     if (wav)
     {
@@ -301,8 +299,7 @@ int benchmark(const RenderJob& commandLineJob)
 
     if (stats.nonfiniteSamples > 0)
     {
-        std::cerr << "snaresim-render: benchmark failed: the output has " << stats.nonfiniteSamples
-                  << " non-finite sample(s)" << std::endl;
+        std::cerr << "snaresim-render: benchmark failed: the output has " << stats.nonfiniteSamples << " non-finite sample(s)" << std::endl;
         return 1;
     }
     return 0;
@@ -314,14 +311,9 @@ int run(const std::vector<std::string>& args)
 
     switch (commandLine.action)
     {
-        case CommandLine::Action::help:
-            std::cout << helpText() << std::flush;
-            return 0;
-        case CommandLine::Action::listParameters:
-            std::cout << describeParameters() << std::flush;
-            return 0;
-        case CommandLine::Action::render:
-            break;
+        case CommandLine::Action::help: std::cout << helpText() << std::flush; return 0;
+        case CommandLine::Action::listParameters: std::cout << describeParameters() << std::flush; return 0;
+        case CommandLine::Action::render: break;
     }
     if (! commandLine.job.distanceFiles.empty())
         return runDistance(commandLine.job);

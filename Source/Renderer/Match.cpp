@@ -52,8 +52,8 @@ double valueAt(const MatchCoordinate& c, double u)
     if (! c.id)
         return std::round(1.0 + 126.0 * u);
     const auto& s = spec(*c.id);
-    double v = s.scale == ParamScale::logarithmic ? s.minValue * std::pow(s.maxValue / s.minValue, u)
-                                                  : s.minValue + u * (s.maxValue - s.minValue);
+    double v =
+        s.scale == ParamScale::logarithmic ? s.minValue * std::pow(s.maxValue / s.minValue, u) : s.minValue + u * (s.maxValue - s.minValue);
     if (s.kind != ParamKind::continuous)
         v = std::round(v);
     return std::clamp(v, s.minValue, s.maxValue);
@@ -126,8 +126,7 @@ Evaluation evaluateCandidate(const Candidate& candidate, double rate, const Stri
         e.distance = std::isfinite(e.terms->total) ? e.terms->total : kUnreachable;
     }
     catch (const std::invalid_argument&) // a model the engine refuses, or a silent render
-    {
-    }
+    {}
     return e;
 }
 
@@ -159,10 +158,7 @@ std::vector<Evaluation> evaluateAll(const std::vector<Candidate>& candidates, do
 class MatchProgress
 {
 public:
-    MatchProgress(bool enabled, int budget)
-        : enabled(enabled), terminal(enabled && ::isatty(STDERR_FILENO) == 1), budget(budget)
-    {
-    }
+    MatchProgress(bool enabled, int budget) : enabled(enabled), terminal(enabled && ::isatty(STDERR_FILENO) == 1), budget(budget) {}
     ~MatchProgress()
     {
         if (shown)
@@ -176,7 +172,8 @@ public:
         const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
         if (terminal)
         {
-            std::fprintf(stderr, "\rsnaresim-render: match %d of %d renders  best distance %.3f  %.0f s\033[K", renders, budget, best, elapsed);
+            std::fprintf(stderr, "\rsnaresim-render: match %d of %d renders  best distance %.3f  %.0f s\033[K", renders, budget, best,
+                         elapsed);
             shown = true;
         }
         else if (best < lastPrinted)
@@ -208,8 +205,7 @@ public:
     MatchObjective(const StrikeSignature& recording, double rate, const ParameterSet& start, std::vector<MatchCoordinate> coordinates,
                    MatchProgress& progress)
         : recording(recording), rate(rate), start(start), coordinates(std::move(coordinates)), progress(progress)
-    {
-    }
+    {}
 
     Candidate candidateAt(const UnitPoint& point) const
     {
@@ -296,20 +292,17 @@ private:
 struct MatchResult
 {
     Candidate match;
-    double distance = 0.0;          // the mean over the finalist's three strikes
-    double strike_dB = 0.0;         // the chosen strike's whole-strike distance (StrikeFingerprint.h)
-    MatchDistance terms;            // the chosen strike's own terms (at its velocity)
-    StrikeFeatures features;        // the chosen strike's
+    double distance = 0.0;   // the mean over the finalist's three strikes
+    double strike_dB = 0.0;  // the chosen strike's whole-strike distance (StrikeFingerprint.h)
+    MatchDistance terms;     // the chosen strike's own terms (at its velocity)
+    StrikeFeatures features; // the chosen strike's
     int renders = 0;
     double wallSeconds = 0.0;
-    std::string startPreset;        // the factory preset the search started from, if it chose one
-    double startPreset_dB = 0.0;    // and its strike's whole-strike distance
+    std::string startPreset;     // the factory preset the search started from, if it chose one
+    double startPreset_dB = 0.0; // and its strike's whole-strike distance
 };
 
-std::string optionalText(const std::optional<double>& v, const char* format)
-{
-    return v ? formatted(format, *v) : "n/a";
-}
+std::string optionalText(const std::optional<double>& v, const char* format) { return v ? formatted(format, *v) : "n/a"; }
 
 juce::var optionalVar(const std::optional<double>& v) { return v ? juce::var(*v) : juce::var(); }
 

@@ -17,8 +17,8 @@ namespace snaresim::render
 {
 
 inline constexpr double kMatchSeconds = 0.6;
-inline constexpr int kMatchFixedVelocity = 100; // when velocity is not searched
-inline constexpr int kMatchFinalists = 3;       // re-rendered at velocity -4 and +4 at the end
+inline constexpr int kMatchFixedVelocity = 100;    // when velocity is not searched
+inline constexpr int kMatchFinalists = 3;          // re-rendered at velocity -4 and +4 at the end
 inline constexpr int kDefaultMatchSeed = 20240611; // --match-seed
 // Without --preset and --match-params, and with at least this budget, the search starts from the
 // factory preset whose strike lies nearest the recording (its renders count in the budget).

@@ -9,16 +9,16 @@ namespace snaresim::render
 namespace
 {
 
-constexpr double kWholeScale_dB = 2.0;       // the low end of one drum's strikes' spread
+constexpr double kWholeScale_dB = 2.0; // the low end of one drum's strikes' spread
 constexpr double kCentroidScale_octaves = 1.0 / 3.0;
-constexpr double kShareFloor = 0.001;        // shares below 0.1 % count as 0.1 % (-30 dB)
+constexpr double kShareFloor = 0.001; // shares below 0.1 % count as 0.1 % (-30 dB)
 constexpr double kShareScale_dB = 3.0;
 const double kFallScale = std::log(1.25);
 constexpr double kPeakScale_semitones = 0.25;
 constexpr double kPeakClip = 4.0;
 constexpr double kSpectrumScale_dB = 2.0;
 constexpr double kEnvelopeScale_dB = 6.0;
-constexpr double kMissing = 4.0;             // a feature one signal has and the other not
+constexpr double kMissing = 4.0; // a feature one signal has and the other not
 
 double ratioTerm(std::optional<double> value, std::optional<double> reference, double scale)
 {

@@ -47,7 +47,8 @@ StrikeSignature strikeSignature(std::span<const double> samples, double sampleRa
 
 struct MatchDistance
 {
-    static constexpr std::array<std::string_view, 8> kTermNames { "whole", "centroid", "bands", "fall20", "fall40", "peak", "spectrum", "envelope" };
+    static constexpr std::array<std::string_view, 8> kTermNames { "whole",  "centroid", "bands",    "fall20",
+                                                                  "fall40", "peak",     "spectrum", "envelope" };
     static constexpr std::array<double, 8> kWeights { 8.0, 1.0, 1.0, 1.0, 1.0, 1.0, 2.0, 1.0 };
 
     std::array<double, 8> z {}; // each term's scaled difference, in kTermNames' order

@@ -21,7 +21,7 @@ std::vector<UnitPoint> latinHypercube(std::size_t dimensions, int count, std::mt
         for (int i = 0; i < count; ++i)
             strata[(std::size_t) i] = i;
         for (int i = count - 1; i > 0; --i) // Fisher-Yates
-            std::swap(strata[(std::size_t) i], strata[(std::size_t) (rng() % (std::uint64_t) (i + 1))]);
+            std::swap(strata[(std::size_t) i], strata[(std::size_t)(rng() % (std::uint64_t)(i + 1))]);
         for (int i = 0; i < count; ++i)
             points[(std::size_t) i][d] = (strata[(std::size_t) i] + unit(rng)) / count;
     }
@@ -129,12 +129,12 @@ std::vector<SearchPoint> searchMinimum(const UnitPoint& start, SearchObjective& 
                     if (p[d] != centre[d])
                         polls.push_back(std::move(p));
                 }
-            polls.resize(std::min<std::size_t>(polls.size(), (std::size_t) (limit - objective.cost())));
+            polls.resize(std::min<std::size_t>(polls.size(), (std::size_t)(limit - objective.cost())));
             const auto distances = history.evaluate(polls);
             const auto best = std::min_element(distances.begin(), distances.end());
             if (best != distances.end() && *best < centreDistance)
             {
-                centre = polls[(std::size_t) (best - distances.begin())];
+                centre = polls[(std::size_t)(best - distances.begin())];
                 centreDistance = *best;
             }
             else

@@ -36,9 +36,9 @@ public:
 
 struct SearchSettings
 {
-    int budget = 200;           // evaluations this search may pay for (the objective's cost() from its start)
+    int budget = 200;              // evaluations this search may pay for (the objective's cost() from its start)
     std::uint64_t seed = 20240611; // --match-seed
-    double globalShare = 0.35;  // of the budget, for the Latin hypercube
+    double globalShare = 0.35;     // of the budget, for the Latin hypercube
     double firstStep = 0.125;
     double lastStep = 1.0 / 256.0;
     double restartSeparation = 0.25; // a new compass search starts this far (max norm) from the others

@@ -35,10 +35,7 @@ std::optional<MicOutput> findMic(std::string_view name)
     return std::nullopt;
 }
 
-std::string_view micChoices()
-{
-    return "top|bottom|far|mix|all|air";
-}
+std::string_view micChoices() { return "top|bottom|far|mix|all|air"; }
 
 std::vector<Channel> micChannels(MicOutput mic, int numAirMics)
 {
@@ -60,9 +57,6 @@ std::vector<Channel> micChannels(MicOutput mic, int numAirMics)
     return { { Mic::mix } };
 }
 
-int analysedChannel(MicOutput mic)
-{
-    return mic == MicOutput::all ? 3 : 0;
-}
+int analysedChannel(MicOutput mic) { return mic == MicOutput::all ? 3 : 0; }
 
 } // namespace snaresim::render

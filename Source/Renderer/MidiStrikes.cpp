@@ -21,8 +21,7 @@ std::vector<Strike> readMidiStrikes(const std::filesystem::path& file)
     const juce::File midiFile(juce::String(std::filesystem::absolute(file, ec).string()));
     juce::FileInputStream stream(midiFile);
     if (! stream.openedOk())
-        throw UserError("cannot read MIDI file " + name + ": "
-                        + stream.getStatus().getErrorMessage().toStdString());
+        throw UserError("cannot read MIDI file " + name + ": " + stream.getStatus().getErrorMessage().toStdString());
 
     return readMidiStrikes(stream, name);
 }
@@ -53,16 +52,14 @@ std::vector<Strike> readMidiStrikes(juce::InputStream& stream, const std::string
 
             const double time = message.getTimeStamp();
             if (! (time >= 0.0 && time <= kMaxSeconds))
-                throw UserError("MIDI file " + name + ": a note-on at " + numberText(time)
-                                + " s is beyond the longest render ("
-                                + std::to_string((int) kMaxSeconds) + " s)");
+                throw UserError("MIDI file " + name + ": a note-on at " + numberText(time) + " s is beyond the longest render (" +
+                                std::to_string((int) kMaxSeconds) + " s)");
 
             strikes.push_back({ time, std::clamp((int) message.getVelocity(), 1, 127) });
         }
     }
 
-    std::stable_sort(strikes.begin(), strikes.end(),
-                     [](const Strike& a, const Strike& b) { return a.time_s < b.time_s; });
+    std::stable_sort(strikes.begin(), strikes.end(), [](const Strike& a, const Strike& b) { return a.time_s < b.time_s; });
     return strikes;
 }
 

@@ -12,10 +12,7 @@ namespace snaresim::render::plot
 namespace
 {
 
-double mapped(double v, bool logarithmic)
-{
-    return logarithmic ? std::log10(v) : v;
-}
+double mapped(double v, bool logarithmic) { return logarithmic ? std::log10(v) : v; }
 
 const juce::Colour kFrame { 0xff303030 };
 const juce::Colour kGrid { 0xffe4e4e4 };
@@ -26,10 +23,7 @@ constexpr float kMinorTick = 3.5f;
 
 } // namespace
 
-juce::String toJuce(const std::string& text)
-{
-    return juce::String::fromUTF8(text.data(), (int) text.size());
-}
+juce::String toJuce(const std::string& text) { return juce::String::fromUTF8(text.data(), (int) text.size()); }
 
 float Axes::xToPixel(double x) const
 {
@@ -71,10 +65,7 @@ std::vector<double> niceTicks(double lo, double hi, int maxCount)
     return ticks;
 }
 
-double tickStep(const std::vector<double>& ticks)
-{
-    return ticks.size() >= 2 ? ticks[1] - ticks[0] : 0.0;
-}
+double tickStep(const std::vector<double>& ticks) { return ticks.size() >= 2 ? ticks[1] - ticks[0] : 0.0; }
 
 std::string decimalLabel(double value, double step)
 {
@@ -101,7 +92,7 @@ int scientificDigits(double value, double step)
     if (value == 0.0 || ! (step > 0.0) || ! std::isfinite(step))
         return 0;
     const double exponent = std::floor(std::log10(std::abs(value)));
-    const double relative = step / std::pow(10.0, exponent);            // m x 10^j, m in {1, 2, 2.5, 5}
+    const double relative = step / std::pow(10.0, exponent); // m x 10^j, m in {1, 2, 2.5, 5}
     const double j = std::floor(std::log10(relative) + 1e-9);
     const double m = relative / std::pow(10.0, j);
     return std::clamp((int) std::max(0.0, -j) + (std::abs(m - 2.5) < 1e-6 ? 1 : 0), 0, 6);
@@ -144,8 +135,7 @@ std::vector<Tick> scientificTicks(const std::vector<double>& values)
 
 juce::Font font(float height, bool bold)
 {
-    return juce::Font(juce::Font::getDefaultSansSerifFontName(), height,
-                      bold ? juce::Font::bold : juce::Font::plain);
+    return juce::Font(juce::Font::getDefaultSansSerifFontName(), height, bold ? juce::Font::bold : juce::Font::plain);
 }
 
 std::vector<Tick> labelled(const std::vector<double>& values, const std::function<std::string(double)>& label)
@@ -166,8 +156,8 @@ void drawVerticalText(juce::Graphics& g, const std::string& text, float x, float
                juce::Justification::centred, false);
 }
 
-void drawAxes(juce::Graphics& g, const Axes& axes, const std::vector<Tick>& xTicks, const std::vector<Tick>& yTicks,
-              const AxisText& text, bool grid)
+void drawAxes(juce::Graphics& g, const Axes& axes, const std::vector<Tick>& xTicks, const std::vector<Tick>& yTicks, const AxisText& text,
+              bool grid)
 {
     const auto& a = axes.area;
     const auto tickFont = font(15.0f);
@@ -249,8 +239,7 @@ void writePng(const juce::Image& image, const AtomicFile& file)
     const juce::File path(juce::String(std::filesystem::absolute(file.temporary()).string()));
     juce::FileOutputStream stream(path);
     if (! stream.openedOk())
-        throw UserError("cannot write " + file.displayName() + ": "
-                        + stream.getStatus().getErrorMessage().toStdString());
+        throw UserError("cannot write " + file.displayName() + ": " + stream.getStatus().getErrorMessage().toStdString());
     stream.setPosition(0);
     stream.truncate();
 
@@ -259,8 +248,8 @@ void writePng(const juce::Image& image, const AtomicFile& file)
     stream.flush();
     if (! written || stream.getStatus().failed())
     {
-        const auto reason = stream.getStatus().failed() ? stream.getStatus().getErrorMessage().toStdString()
-                                                        : std::string("PNG encoding failed");
+        const auto reason =
+            stream.getStatus().failed() ? stream.getStatus().getErrorMessage().toStdString() : std::string("PNG encoding failed");
         throw UserError("cannot write " + file.displayName() + ": " + reason);
     }
 }

@@ -63,8 +63,8 @@ struct AxisText
     std::string xTitle;
     std::string yTitle;
 };
-void drawAxes(juce::Graphics& g, const Axes& axes, const std::vector<Tick>& xTicks,
-              const std::vector<Tick>& yTicks, const AxisText& text, bool grid = true);
+void drawAxes(juce::Graphics& g, const Axes& axes, const std::vector<Tick>& xTicks, const std::vector<Tick>& yTicks, const AxisText& text,
+              bool grid = true);
 
 // Text rotated by -90 degrees (reading upwards), centred on (x, y).
 void drawVerticalText(juce::Graphics& g, const std::string& text, float x, float y, const juce::Font& font);

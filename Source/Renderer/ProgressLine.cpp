@@ -7,11 +7,8 @@ namespace snaresim::render
 {
 
 ProgressLine::ProgressLine(bool enabled, std::int64_t totalSamples, double sampleRate_Hz)
-    : active(enabled && ::isatty(STDERR_FILENO) == 1 && totalSamples > 0 && sampleRate_Hz > 0.0),
-      total(totalSamples),
-      rate(sampleRate_Hz)
-{
-}
+    : active(enabled && ::isatty(STDERR_FILENO) == 1 && totalSamples > 0 && sampleRate_Hz > 0.0), total(totalSamples), rate(sampleRate_Hz)
+{}
 
 ProgressLine::~ProgressLine()
 {

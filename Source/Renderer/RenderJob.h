@@ -16,9 +16,9 @@ namespace snaresim::render
 inline constexpr double kDefaultSampleRate_Hz = 48000.0;
 inline constexpr double kMinSampleRate_Hz = 8000.0;
 inline constexpr double kMaxSampleRate_Hz = 384000.0;
-inline constexpr double kDefaultSeconds = 2.0;     // --hit only, no --seconds
-inline constexpr double kMidiTailSeconds = 2.0;    // --midi, no --seconds: last note-on + this
-inline constexpr double kMaxSeconds = 3600.0;      // longest render (and latest strike time)
+inline constexpr double kDefaultSeconds = 2.0;  // --hit only, no --seconds
+inline constexpr double kMidiTailSeconds = 2.0; // --midi, no --seconds: last note-on + this
+inline constexpr double kMaxSeconds = 3600.0;   // longest render (and latest strike time)
 
 // --bench: blocks of --block-size samples through Drum::process, as the plug-in renders.
 inline constexpr int kDefaultBlockSize = 64;
@@ -43,7 +43,7 @@ enum class MicOutput
     far,
     mix,
     all,
-    air     // one channel per air microphone (air box; its default)
+    air // one channel per air microphone (air box; its default)
 };
 
 // --bench-scenario: the strikes a benchmark plays when no --hit / --midi is given.
@@ -73,7 +73,7 @@ struct ParameterOverride
 {
     ParamId id {};
     double value = 0.0;
-    std::string text;   // as typed, for error messages
+    std::string text; // as typed, for error messages
 };
 
 // One coordinate --match searches: a parameter, or (no id) the strike's MIDI velocity.
@@ -87,47 +87,47 @@ struct MatchCoordinate
 struct ReferenceSpec
 {
     std::filesystem::path kitDir;
-    std::string pattern;  // a glob(7) pattern under kitDir
-    std::string text;     // as typed, for messages
+    std::string pattern; // a glob(7) pattern under kitDir
+    std::string text;    // as typed, for messages
 };
 
-inline constexpr int kDefaultMatchBudget = 400;  // --match-budget: renders
+inline constexpr int kDefaultMatchBudget = 400; // --match-budget: renders
 inline constexpr int kMinMatchBudget = 12;
 inline constexpr int kMaxMatchBudget = 100000;
 
 struct RenderJob
 {
-    std::optional<std::filesystem::path> output;    // -o (WAV); always given unless bench
-    std::optional<std::filesystem::path> energyCsv; // --energy-csv
-    std::optional<std::filesystem::path> energyPlot; // --energy-plot (PNG)
-    std::optional<std::filesystem::path> spectrogram; // --spectrogram (PNG)
-    std::optional<std::filesystem::path> snarePlot; // --snare-plot (PNG)
-    std::optional<std::filesystem::path> midiFile;  // --midi
-    std::vector<Strike> hits;                       // --hit, in command-line order
-    std::optional<double> seconds;                  // --seconds
-    double sampleRate_Hz = kDefaultSampleRate_Hz;   // --sample-rate (integer, checked range)
-    std::optional<std::string> preset;              // --preset
-    std::optional<int> airModel;                    // --model: index into air_model's choices
-    std::optional<MicOutput> mic;                   // --mic (default: mix)
-    std::vector<ParameterOverride> overrides;       // --set, applied in order after the preset
-    bool lossless = false;                          // --lossless
-    bool json = false;                              // --json
-    bool bench = false;                             // --bench
-    std::optional<int> blockSize;                   // --block-size (bench only, checked range)
-    std::optional<BenchScenario> benchScenario;     // --bench-scenario (bench only)
-    bool benchShort = false;                        // --bench-short (bench only)
-    std::optional<int> benchRepeats;                // --bench-repeat (bench only, checked range)
-    std::vector<Point3> airMics;                    // --air-mic X,Y,Z (air box), in order
-    std::optional<Walls> walls;                     // --walls (air box; --lossless: reflecting)
-    std::optional<Point3> boxSize;                  // --box X,Y,Z or --box S (air box, metres)
-    std::optional<double> boxMargin;                // --box-margin M (air box, metres)
-    std::optional<int> threads;                     // --threads N (air box; default: all cores)
-    std::optional<std::filesystem::path> match;     // --match RECORDING (-o is then the preset file)
+    std::optional<std::filesystem::path> output;             // -o (WAV); always given unless bench
+    std::optional<std::filesystem::path> energyCsv;          // --energy-csv
+    std::optional<std::filesystem::path> energyPlot;         // --energy-plot (PNG)
+    std::optional<std::filesystem::path> spectrogram;        // --spectrogram (PNG)
+    std::optional<std::filesystem::path> snarePlot;          // --snare-plot (PNG)
+    std::optional<std::filesystem::path> midiFile;           // --midi
+    std::vector<Strike> hits;                                // --hit, in command-line order
+    std::optional<double> seconds;                           // --seconds
+    double sampleRate_Hz = kDefaultSampleRate_Hz;            // --sample-rate (integer, checked range)
+    std::optional<std::string> preset;                       // --preset
+    std::optional<int> airModel;                             // --model: index into air_model's choices
+    std::optional<MicOutput> mic;                            // --mic (default: mix)
+    std::vector<ParameterOverride> overrides;                // --set, applied in order after the preset
+    bool lossless = false;                                   // --lossless
+    bool json = false;                                       // --json
+    bool bench = false;                                      // --bench
+    std::optional<int> blockSize;                            // --block-size (bench only, checked range)
+    std::optional<BenchScenario> benchScenario;              // --bench-scenario (bench only)
+    bool benchShort = false;                                 // --bench-short (bench only)
+    std::optional<int> benchRepeats;                         // --bench-repeat (bench only, checked range)
+    std::vector<Point3> airMics;                             // --air-mic X,Y,Z (air box), in order
+    std::optional<Walls> walls;                              // --walls (air box; --lossless: reflecting)
+    std::optional<Point3> boxSize;                           // --box X,Y,Z or --box S (air box, metres)
+    std::optional<double> boxMargin;                         // --box-margin M (air box, metres)
+    std::optional<int> threads;                              // --threads N (air box; default: all cores)
+    std::optional<std::filesystem::path> match;              // --match RECORDING (-o is then the preset file)
     std::optional<std::vector<MatchCoordinate>> matchParams; // --match-params ID,ID,... (checked IDs)
-    std::optional<int> matchBudget;                 // --match-budget N (renders)
-    std::optional<int> matchSeed;                   // --match-seed N (the search's random numbers)
-    std::vector<std::filesystem::path> distanceFiles; // --distance FILE, in order (nothing rendered)
-    std::vector<ReferenceSpec> references;          // --ref KITDIR:GLOB, in order
+    std::optional<int> matchBudget;                          // --match-budget N (renders)
+    std::optional<int> matchSeed;                            // --match-seed N (the search's random numbers)
+    std::vector<std::filesystem::path> distanceFiles;        // --distance FILE, in order (nothing rendered)
+    std::vector<ReferenceSpec> references;                   // --ref KITDIR:GLOB, in order
 
     MicOutput selectedMic() const { return mic.value_or(MicOutput::mix); }
     int selectedBlockSize() const { return blockSize.value_or(kDefaultBlockSize); }
@@ -139,13 +139,20 @@ struct RenderJob
     const char* firstRenderOption() const
     {
         const std::pair<bool, const char*> options[] {
-            { ! hits.empty(), "--hit" },           { midiFile.has_value(), "--midi" },
-            { seconds.has_value(), "--seconds" },  { energyCsv.has_value(), "--energy-csv" },
-            { energyPlot.has_value(), "--energy-plot" }, { spectrogram.has_value(), "--spectrogram" },
-            { snarePlot.has_value(), "--snare-plot" }, { lossless, "--lossless" },
-            { bench, "--bench" },                  { mic.has_value(), "--mic" },
-            { ! airMics.empty(), "--air-mic" },    { walls.has_value(), "--walls" },
-            { boxSize.has_value(), "--box" },      { boxMargin.has_value(), "--box-margin" },
+            { ! hits.empty(), "--hit" },
+            { midiFile.has_value(), "--midi" },
+            { seconds.has_value(), "--seconds" },
+            { energyCsv.has_value(), "--energy-csv" },
+            { energyPlot.has_value(), "--energy-plot" },
+            { spectrogram.has_value(), "--spectrogram" },
+            { snarePlot.has_value(), "--snare-plot" },
+            { lossless, "--lossless" },
+            { bench, "--bench" },
+            { mic.has_value(), "--mic" },
+            { ! airMics.empty(), "--air-mic" },
+            { walls.has_value(), "--walls" },
+            { boxSize.has_value(), "--box" },
+            { boxMargin.has_value(), "--box-margin" },
             { threads.has_value(), "--threads" },
         };
         for (const auto& [given, option] : options)

@@ -13,8 +13,7 @@ RenderPlan makeRenderPlan(const RenderJob& job, const std::vector<Strike>& midiS
 {
     std::vector<Strike> all = job.hits;
     all.insert(all.end(), midiStrikes.begin(), midiStrikes.end());
-    std::stable_sort(all.begin(), all.end(),
-                     [](const Strike& a, const Strike& b) { return a.time_s < b.time_s; });
+    std::stable_sort(all.begin(), all.end(), [](const Strike& a, const Strike& b) { return a.time_s < b.time_s; });
 
     double seconds = kDefaultSeconds;
     if (job.seconds)
@@ -23,8 +22,8 @@ RenderPlan makeRenderPlan(const RenderJob& job, const std::vector<Strike>& midiS
         seconds = (all.empty() ? 0.0 : all.back().time_s) + kMidiTailSeconds;
 
     if (seconds > kMaxSeconds)
-        throw UserError("the render would last " + numberText(seconds) + " s, longer than "
-                        + std::to_string((int) kMaxSeconds) + " s (give --seconds)");
+        throw UserError("the render would last " + numberText(seconds) + " s, longer than " + std::to_string((int) kMaxSeconds) +
+                        " s (give --seconds)");
 
     RenderPlan plan;
     plan.sampleRate_Hz = job.sampleRate_Hz;

@@ -11,16 +11,16 @@ namespace snaresim::render
 
 struct ScheduledStrike
 {
-    std::int64_t sample = 0;    // round(time * sampleRate)
+    std::int64_t sample = 0; // round(time * sampleRate)
     int velocity = 100;
 };
 
 struct RenderPlan
 {
     double sampleRate_Hz = kDefaultSampleRate_Hz;
-    std::int64_t numSamples = 0;            // round(seconds * sampleRate)
-    std::vector<ScheduledStrike> strikes;   // sorted by sample; only those inside the render
-    int strikesOutside = 0;                 // strikes at or after the end (not played)
+    std::int64_t numSamples = 0;          // round(seconds * sampleRate)
+    std::vector<ScheduledStrike> strikes; // sorted by sample; only those inside the render
+    int strikesOutside = 0;               // strikes at or after the end (not played)
 };
 
 // The length: job.seconds if given; otherwise, with a MIDI file, the latest strike + 2 s;

@@ -94,8 +94,8 @@ struct Statistics
 
 } // namespace
 
-RenderStats renderDrum(std::unique_ptr<Drum> drumToPlay, const ParameterSet& params, const RenderPlan& plan,
-                       std::span<const Channel> mics, bool trackEnergy, const RenderSinks& sinks)
+RenderStats renderDrum(std::unique_ptr<Drum> drumToPlay, const ParameterSet& params, const RenderPlan& plan, std::span<const Channel> mics,
+                       bool trackEnergy, const RenderSinks& sinks)
 {
     using Clock = std::chrono::steady_clock;
 
@@ -128,13 +128,13 @@ RenderStats renderDrum(std::unique_ptr<Drum> drumToPlay, const ParameterSet& par
         void afterStep(const Drum& drum) override { after(drum); }
     } observer;
 
-    std::int64_t sample = 0;  // the sample the drum has just computed
+    std::int64_t sample = 0; // the sample the drum has just computed
     int indexInBlock = 0;
     observer.after = [&](const Drum& drum) {
         for (std::size_t c = 0; c < numChannels; ++c)
             if (mics[c].air >= 0)
-                blocks[c][(std::size_t) indexInBlock] = (float) (drum.config().outputGain * kAirMicGain_per_Pa
-                                                                 * drum.airMicPressure(mics[c].air));
+                blocks[c][(std::size_t) indexInBlock] =
+                    (float) (drum.config().outputGain * kAirMicGain_per_Pa * drum.airMicPressure(mics[c].air));
             else if (mics[c].mic != Mic::mix)
                 blocks[c][(std::size_t) indexInBlock] = (float) drum.output(mics[c].mic);
         if (trackEnergy)

@@ -31,35 +31,35 @@ struct BenchFigures
     std::int64_t blocks = 0;
     double meanBlock_s = 0.0;
     double worstBlock_s = 0.0;
-    int repeats = 1;                   // runs; the block times above are each block's fastest run
-    double worstBlockRaw_s = 0.0;      // the slowest block of any run
-    double slowestRun_s = 0.0;         // the slowest run's total block time
-    double fastestRun_s = 0.0;         // the fastest run's total block time
-    double blockBudget_s = 0.0;        // blockSize / sample rate
-    double batterGridSpacing_m = 0.0;  // Drum::batter().grid().spacing()
+    int repeats = 1;                  // runs; the block times above are each block's fastest run
+    double worstBlockRaw_s = 0.0;     // the slowest block of any run
+    double slowestRun_s = 0.0;        // the slowest run's total block time
+    double fastestRun_s = 0.0;        // the fastest run's total block time
+    double blockBudget_s = 0.0;       // blockSize / sample rate
+    double batterGridSpacing_m = 0.0; // Drum::batter().grid().spacing()
     double carryGridSpacing_m = 0.0;
-    int batterNodes = 0;               // interior nodes of the batter / carry grids
+    int batterNodes = 0; // interior nodes of the batter / carry grids
     int carryNodes = 0;
-    int snarePoints = 0;               // SnareContact::numPoints(): wire points that collide
-    double peakResident_bytes = 0.0;   // the process's peak resident size after the runs (getrusage ru_maxrss)
+    int snarePoints = 0;             // SnareContact::numPoints(): wire points that collide
+    double peakResident_bytes = 0.0; // the process's peak resident size after the runs (getrusage ru_maxrss)
     // The air box (--model airbox): its update against a bare 7-point stencil on its grid,
     // timed after the runs in the same process (AirSpeed.h).
     std::optional<AirSpeed> air;
     // One more run after the timed ones, with the drum's step profile on (StepProfile.h).
     StepProfile profile;
-    double profiledRun_s = 0.0;        // that run's total block time
+    double profiledRun_s = 0.0; // that run's total block time
 };
 
 struct RenderStats
 {
     std::int64_t samples = 0;
-    double wallSeconds = 0.0;           // time inside the engine (strikes and steps) only
+    double wallSeconds = 0.0; // time inside the engine (strikes and steps) only
     int channels = 1;
-    double peak = 0.0;                  // max |sample| over the finite samples of every channel
-    double rms = 0.0;                   // over the finite samples of every channel
-    std::int64_t nonfiniteSamples = 0;  // over every channel
-    int nonfiniteResets = 0;            // times the player's guard reset a drum gone non-finite
-    int strikes = 0;                    // strikes played
+    double peak = 0.0;                 // max |sample| over the finite samples of every channel
+    double rms = 0.0;                  // over the finite samples of every channel
+    std::int64_t nonfiniteSamples = 0; // over every channel
+    int nonfiniteResets = 0;           // times the player's guard reset a drum gone non-finite
+    int strikes = 0;                   // strikes played
     // With energy tracking: max_n |balance_n - balance_0| / max_n total_n (0 when the drum
     // never held energy); NaN when the ledger went non-finite.
     std::optional<double> energyRelativeDriftMax;
@@ -67,7 +67,7 @@ struct RenderStats
     // its CSV column name ("batter_J", ..., "total_J"), in the CSV's order (NaN: never finite).
     std::vector<std::pair<std::string, double>> energyMax_J;
     SolverStats solver;
-    std::optional<BenchFigures> bench;  // --bench only
+    std::optional<BenchFigures> bench; // --bench only
 };
 
 struct RenderSinks
@@ -85,7 +85,7 @@ struct RenderSinks
 // Plays the plan on `drum` (built from `params`) through the real-time player, as the plug-in
 // plays it. mics: the signals to render, one channel each (Microphones.h: drum.output(mic) after
 // every step, Mic::mix the player's output, an air microphone's pressure at audio level).
-RenderStats renderDrum(std::unique_ptr<Drum> drum, const ParameterSet& params, const RenderPlan& plan,
-                       std::span<const Channel> mics, bool trackEnergy, const RenderSinks& sinks);
+RenderStats renderDrum(std::unique_ptr<Drum> drum, const ParameterSet& params, const RenderPlan& plan, std::span<const Channel> mics,
+                       bool trackEnergy, const RenderSinks& sinks);
 
 } // namespace snaresim::render

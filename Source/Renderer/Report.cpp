@@ -18,31 +18,18 @@ namespace snaresim::render
 namespace
 {
 
-double secondsRendered(const RenderReport& r)
-{
-    return (double) r.stats.samples / r.plan.sampleRate_Hz;
-}
+double secondsRendered(const RenderReport& r) { return (double) r.stats.samples / r.plan.sampleRate_Hz; }
 
 double realtimeFactor(const RenderReport& r)
 {
-    return r.stats.wallSeconds > 0.0 ? secondsRendered(r) / r.stats.wallSeconds
-                                     : std::numeric_limits<double>::infinity();
+    return r.stats.wallSeconds > 0.0 ? secondsRendered(r) / r.stats.wallSeconds : std::numeric_limits<double>::infinity();
 }
 
-juce::var text(const std::string& s)
-{
-    return juce::String(juce::CharPointer_UTF8(s.c_str()));
-}
+juce::var text(const std::string& s) { return juce::String(juce::CharPointer_UTF8(s.c_str())); }
 
-juce::var pathOrNull(const std::optional<std::filesystem::path>& path)
-{
-    return path ? text(path->string()) : juce::var();
-}
+juce::var pathOrNull(const std::optional<std::filesystem::path>& path) { return path ? text(path->string()) : juce::var(); }
 
-std::string channelText(int channels)
-{
-    return channels == 1 ? "mono" : std::to_string(channels) + " channels";
-}
+std::string channelText(int channels) { return channels == 1 ? "mono" : std::to_string(channels) + " channels"; }
 
 // The step profile's phases, the path's in step order: each one's compute per second of audio
 // and share of the steps' total.
@@ -63,10 +50,7 @@ std::vector<PhaseFigure> phaseFigures(const RenderReport& r, const StepProfile& 
 }
 
 // The profiled run's block time against the fastest timed run's, less one.
-double profilingOverhead(const BenchFigures& b)
-{
-    return b.fastestRun_s > 0.0 ? b.profiledRun_s / b.fastestRun_s - 1.0 : 0.0;
-}
+double profilingOverhead(const BenchFigures& b) { return b.fastestRun_s > 0.0 ? b.profiledRun_s / b.fastestRun_s - 1.0 : 0.0; }
 
 juce::var profileJson(const RenderReport& r, const BenchFigures& b)
 {
@@ -84,7 +68,7 @@ juce::var profileJson(const RenderReport& r, const BenchFigures& b)
         phases->setProperty(juce::Identifier(juce::String(std::string(f.name))), juce::var(phase));
     }
     object->setProperty("phases", juce::var(phases));
-    object->setProperty("compute_seconds_per_audio_second", p.total() / secondsRendered(r)); // the phases' sum
+    object->setProperty("compute_seconds_per_audio_second", p.total() / secondsRendered(r));           // the phases' sum
     object->setProperty("run_compute_seconds_per_audio_second", b.profiledRun_s / secondsRendered(r)); // its blocks, player included
     object->setProperty("fastest_run_compute_seconds_per_audio_second", b.fastestRun_s / secondsRendered(r));
     object->setProperty("overhead", profilingOverhead(b));
@@ -147,8 +131,7 @@ std::string formatJson(const RenderReport& r)
         object->setProperty("worst_block_ms", 1000.0 * b->worstBlock_s);
         object->setProperty("repeats", b->repeats);
         object->setProperty("worst_block_raw_ms", 1000.0 * b->worstBlockRaw_s);
-        object->setProperty("realtime_factor_slowest_run",
-                            b->slowestRun_s > 0.0 ? secondsRendered(r) / b->slowestRun_s : 0.0);
+        object->setProperty("realtime_factor_slowest_run", b->slowestRun_s > 0.0 ? secondsRendered(r) / b->slowestRun_s : 0.0);
         object->setProperty("block_budget_ms", 1000.0 * b->blockBudget_s);
         object->setProperty("worst_block_share", b->worstBlock_s / b->blockBudget_s);
         object->setProperty("batter_grid_spacing_m", b->batterGridSpacing_m);
@@ -184,25 +167,23 @@ std::string benchSummary(const RenderReport& r, const BenchFigures& b)
 {
     std::string s;
     s += formatted("benchmark: %s scenario%s, %.3f s at %.0f Hz, block size %d (%lld blocks), %d strike%s",
-                   std::string(scenarioName(r.job)).c_str(), r.job.benchShort ? " (short)" : "",
-                   secondsRendered(r), r.plan.sampleRate_Hz, b.blockSize, (long long) b.blocks, r.stats.strikes,
-                   r.stats.strikes == 1 ? "" : "s");
+                   std::string(scenarioName(r.job)).c_str(), r.job.benchShort ? " (short)" : "", secondsRendered(r), r.plan.sampleRate_Hz,
+                   b.blockSize, (long long) b.blocks, r.stats.strikes, r.stats.strikes == 1 ? "" : "s");
     if (r.plan.strikesOutside > 0)
         s += formatted(" (%d more at or after the end, not played)", r.plan.strikesOutside);
     s += "\n";
     const std::string target(snaresim::vectorTargetName(snaresim::vectorTarget()));
-    s += formatted("realtime factor %.3gx (%.3f s of audio in %.3f s), vector target %s\n", realtimeFactor(r),
-                   secondsRendered(r), r.stats.wallSeconds, target.c_str());
+    s += formatted("realtime factor %.3gx (%.3f s of audio in %.3f s), vector target %s\n", realtimeFactor(r), secondsRendered(r),
+                   r.stats.wallSeconds, target.c_str());
     s += formatted("block time (each block's fastest of %d run%s): mean %.4g ms, worst %.4g ms; budget %.4g ms "
                    "(worst = %.3g x the budget)\n",
-                   b.repeats, b.repeats == 1 ? "" : "s", 1000.0 * b.meanBlock_s, 1000.0 * b.worstBlock_s,
-                   1000.0 * b.blockBudget_s, b.worstBlock_s / b.blockBudget_s);
+                   b.repeats, b.repeats == 1 ? "" : "s", 1000.0 * b.meanBlock_s, 1000.0 * b.worstBlock_s, 1000.0 * b.blockBudget_s,
+                   b.worstBlock_s / b.blockBudget_s);
     if (b.repeats > 1)
         s += formatted("raw: slowest block of any run %.4g ms; slowest run %.3gx real time\n", 1000.0 * b.worstBlockRaw_s,
                        b.slowestRun_s > 0.0 ? secondsRendered(r) / b.slowestRun_s : 0.0);
-    s += formatted("grid: batter h %.4g mm (%d nodes), carry h %.4g mm (%d nodes), %d snare points\n",
-                   1000.0 * b.batterGridSpacing_m, b.batterNodes, 1000.0 * b.carryGridSpacing_m, b.carryNodes,
-                   b.snarePoints);
+    s += formatted("grid: batter h %.4g mm (%d nodes), carry h %.4g mm (%d nodes), %d snare points\n", 1000.0 * b.batterGridSpacing_m,
+                   b.batterNodes, 1000.0 * b.carryGridSpacing_m, b.carryNodes, b.snarePoints);
     if (const auto& a = b.air)
     {
         s += formatted("air box: %lld points, h %.4g mm, %.3g s of compute per s of audio (the whole drum, %d thread%s)\n",
@@ -222,11 +203,10 @@ std::string benchSummary(const RenderReport& r, const BenchFigures& b)
     std::stable_sort(phases.begin(), phases.end(), [](const auto& x, const auto& y) { return x.share > y.share; });
     for (const auto& f : phases)
         s += formatted("  %-15s %9.4f s/s %6.1f%%\n", std::string(f.name).c_str(), f.perAudioSecond, 100.0 * f.share);
-    s += formatted("peak %.6g, rms %.6g, non-finite samples %lld\n", r.stats.peak, r.stats.rms,
-                   (long long) r.stats.nonfiniteSamples);
+    s += formatted("peak %.6g, rms %.6g, non-finite samples %lld\n", r.stats.peak, r.stats.rms, (long long) r.stats.nonfiniteSamples);
     if (r.output)
-        s += "wrote " + r.output->string() + formatted(" (%.3f s, %.0f Hz, mono (mix), 32-bit float)\n",
-                                                        secondsRendered(r), r.plan.sampleRate_Hz);
+        s += "wrote " + r.output->string() +
+             formatted(" (%.3f s, %.0f Hz, mono (mix), 32-bit float)\n", secondsRendered(r), r.plan.sampleRate_Hz);
     if (r.stats.solver.fallbacks > 0)
         s += formatted("warning: the contact solver fell back %ld time(s)\n", r.stats.solver.fallbacks);
     return s;
@@ -240,9 +220,9 @@ std::string formatSummary(const RenderReport& r)
         return benchSummary(r, *r.stats.bench);
 
     std::string s;
-    s += "wrote " + (r.output ? r.output->string() : std::string("(no file)"))
-         + formatted(" (%.3f s, %.0f Hz, ", secondsRendered(r), r.plan.sampleRate_Hz)
-         + channelText(r.stats.channels) + " (" + std::string(micName(r.job.selectedMic())) + "), 32-bit float)\n";
+    s += "wrote " + (r.output ? r.output->string() : std::string("(no file)")) +
+         formatted(" (%.3f s, %.0f Hz, ", secondsRendered(r), r.plan.sampleRate_Hz) + channelText(r.stats.channels) + " (" +
+         std::string(micName(r.job.selectedMic())) + "), 32-bit float)\n";
     if (r.energyCsv)
         s += "wrote " + r.energyCsv->string() + " (energy ledger, one row per sample)\n";
     if (r.energyPlot)
@@ -255,12 +235,11 @@ std::string formatSummary(const RenderReport& r)
     if (r.plan.strikesOutside > 0)
         s += formatted(" (%d more at or after the end, not played)", r.plan.strikesOutside);
     s += "\n";
-    s += formatted("peak %.6g, rms %.6g, non-finite samples %lld\n", r.stats.peak, r.stats.rms,
-                (long long) r.stats.nonfiniteSamples);
+    s += formatted("peak %.6g, rms %.6g, non-finite samples %lld\n", r.stats.peak, r.stats.rms, (long long) r.stats.nonfiniteSamples);
     s += formatted("render time %.3f s, %.2fx real time\n", r.stats.wallSeconds, realtimeFactor(r));
-    s += formatted("solver: max %d Newton iterations", r.stats.solver.maxIterations)
-         + formatted(" (snares %d)", r.stats.solver.maxSnareIterations)
-         + formatted(", max snare penetration %.3g m\n", r.stats.solver.maxSnarePenetration_m);
+    s += formatted("solver: max %d Newton iterations", r.stats.solver.maxIterations) +
+         formatted(" (snares %d)", r.stats.solver.maxSnareIterations) +
+         formatted(", max snare penetration %.3g m\n", r.stats.solver.maxSnarePenetration_m);
     if (r.stats.energyRelativeDriftMax)
         s += formatted("energy balance drift (max, relative): %.3g\n", *r.stats.energyRelativeDriftMax);
     if (r.stats.solver.fallbacks > 0)

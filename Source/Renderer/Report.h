@@ -19,12 +19,12 @@ struct RenderReport
     const RenderJob& job;
     const RenderPlan& plan;
     const RenderStats& stats;
-    std::optional<std::filesystem::path> output;    // absolute (none: --bench without -o)
-    std::optional<std::filesystem::path> energyCsv; // absolute
-    std::optional<std::filesystem::path> energyPlot; // absolute
+    std::optional<std::filesystem::path> output;      // absolute (none: --bench without -o)
+    std::optional<std::filesystem::path> energyCsv;   // absolute
+    std::optional<std::filesystem::path> energyPlot;  // absolute
     std::optional<std::filesystem::path> spectrogram; // absolute
-    std::optional<std::filesystem::path> snarePlot; // absolute
-    const DistanceReport* distance;                 // --ref: the rendered strike's (none: nullptr)
+    std::optional<std::filesystem::path> snarePlot;   // absolute
+    const DistanceReport* distance;                   // --ref: the rendered strike's (none: nullptr)
 };
 
 // One line, ends with a newline. Non-finite numbers are written as null. With --bench

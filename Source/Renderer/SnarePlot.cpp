@@ -14,9 +14,9 @@ namespace snaresim::render
 namespace
 {
 
-const juce::Colour kBand { 0xfff4c2c2 };      // wires: minimum to maximum
-const juce::Colour kWireMean { 0xffb2182b };  // wires: mean
-const juce::Colour kCarry { 0xff1f4e9c };     // carry head under the wires
+const juce::Colour kBand { 0xfff4c2c2 };     // wires: minimum to maximum
+const juce::Colour kWireMean { 0xffb2182b }; // wires: mean
+const juce::Colour kCarry { 0xff1f4e9c };    // carry head under the wires
 const juce::Colour kContactFill { 0xffc6dbef };
 const juce::Colour kContactLine { 0xff08519c };
 const juce::Colour kNote { 0xff404040 };
@@ -56,8 +56,7 @@ enum class Swatch
     fill
 };
 
-float legendRow(juce::Graphics& g, float x, float y, float width, Swatch swatch, juce::Colour colour,
-                const std::string& text, int lines)
+float legendRow(juce::Graphics& g, float x, float y, float width, Swatch swatch, juce::Colour colour, const std::string& text, int lines)
 {
     const float rowHeight = lines > 1 ? 40.0f : 24.0f;
     const float cy = y + rowHeight / 2.0f;
@@ -91,8 +90,7 @@ float legendRow(juce::Graphics& g, float x, float y, float width, Swatch swatch,
 
 } // namespace
 
-SnarePlot::SnarePlot(const Drum& drum, std::int64_t numSamples, double sampleRate_Hz,
-                     std::optional<std::int64_t> firstStrikeSample)
+SnarePlot::SnarePlot(const Drum& drum, std::int64_t numSamples, double sampleRate_Hz, std::optional<std::int64_t> firstStrikeSample)
     : sampleRate(sampleRate_Hz), struck(firstStrikeSample.has_value()), engaged(drum.snaresEngaged())
 {
     const auto samples = std::max<std::int64_t>(numSamples, 1);
@@ -111,7 +109,7 @@ SnarePlot::SnarePlot(const Drum& drum, std::int64_t numSamples, double sampleRat
             wireNodes.push_back(i * stride + l);
             headNodes.push_back(grid.nearestInterior(snares.nodeX(l), snares.wireY(i)));
         }
-    rows.reserve((std::size_t) (timeTo - timeFrom + 1));
+    rows.reserve((std::size_t)(timeTo - timeFrom + 1));
 }
 
 void SnarePlot::add(std::int64_t time, const Drum& drum)
@@ -145,8 +143,7 @@ void SnarePlot::add(std::int64_t time, const Drum& drum)
     row.max_mm = wireNodes.empty() ? 0.0 : hi * 1000.0;
     row.carry_mm = carryCount > 0 ? carrySum / carryCount * 1000.0 : 0.0;
     row.contacts = drum.snaresEngaged() ? drum.solverStats().snareContacts : 0;
-    if (! std::isfinite(row.mean_mm) || ! std::isfinite(row.min_mm) || ! std::isfinite(row.max_mm)
-        || ! std::isfinite(row.carry_mm))
+    if (! std::isfinite(row.mean_mm) || ! std::isfinite(row.min_mm) || ! std::isfinite(row.max_mm) || ! std::isfinite(row.carry_mm))
     {
         ++nonfiniteRows;
         return;
@@ -192,9 +189,9 @@ void SnarePlot::drawWirePanel(juce::Graphics& g, juce::Rectangle<float> area, do
     plot::Axes axes { area, 0.0, durationMs, lo, hi };
     const auto yValues = plot::niceTicks(lo, hi, 8);
     const double yStep = plot::tickStep(yValues);
-    const auto title = std::string(struck ? "Snare wires after the first strike: " : "Snare wires (no strike played): ")
-                       + std::to_string(wires) + (wires == 1 ? " wire x " : " wires x ")
-                       + std::to_string(interiorPerWire) + " interior nodes, " + formatted("%.0f", sampleRate) + " Hz";
+    const auto title = std::string(struck ? "Snare wires after the first strike: " : "Snare wires (no strike played): ") +
+                       std::to_string(wires) + (wires == 1 ? " wire x " : " wires x ") + std::to_string(interiorPerWire) +
+                       " interior nodes, " + formatted("%.0f", sampleRate) + " Hz";
     plot::drawAxes(g, axes, timeTicks(durationMs, area.getWidth()),
                    plot::labelled(yValues, [&](double v) { return plot::decimalLabel(v, yStep); }),
                    { title, "", "displacement (mm), up positive" });
@@ -243,8 +240,7 @@ void SnarePlot::drawWirePanel(juce::Graphics& g, juce::Rectangle<float> area, do
     // The lowest wire mean, marked.
     if (struck && engaged && ! rows.empty())
     {
-        const auto lowest = std::min_element(rows.begin(), rows.end(),
-                                             [](const Row& a, const Row& b) { return a.mean_mm < b.mean_mm; });
+        const auto lowest = std::min_element(rows.begin(), rows.end(), [](const Row& a, const Row& b) { return a.mean_mm < b.mean_mm; });
         const auto p = point(lowest->time_ms, lowest->mean_mm);
         g.setColour(juce::Colours::black);
         g.drawEllipse(juce::Rectangle<float>(10.0f, 10.0f).withCentre(p), 1.6f);
@@ -325,24 +321,20 @@ void SnarePlot::drawLegend(juce::Graphics& g, float x, float y) const
         lines.push_back("non-finite states left out");
     if (struck && engaged && ! rows.empty())
     {
-        const auto lowestMean = std::min_element(rows.begin(), rows.end(),
-                                                 [](const Row& a, const Row& b) { return a.mean_mm < b.mean_mm; });
-        const auto lowestNode = std::min_element(rows.begin(), rows.end(),
-                                                 [](const Row& a, const Row& b) { return a.min_mm < b.min_mm; });
+        const auto lowestMean =
+            std::min_element(rows.begin(), rows.end(), [](const Row& a, const Row& b) { return a.mean_mm < b.mean_mm; });
+        const auto lowestNode = std::min_element(rows.begin(), rows.end(), [](const Row& a, const Row& b) { return a.min_mm < b.min_mm; });
         lines.insert(lines.end(),
                      { "lowest wire mean (circled):",
-                       "  " + signedText("%.3f", lowestMean->mean_mm) + " mm at "
-                           + formatted("%.2f", lowestMean->time_ms) + " ms",
+                       "  " + signedText("%.3f", lowestMean->mean_mm) + " mm at " + formatted("%.2f", lowestMean->time_ms) + " ms",
                        "lowest wire node:",
-                       "  " + signedText("%.3f", lowestNode->min_mm) + " mm at "
-                           + formatted("%.2f", lowestNode->time_ms) + " ms" });
+                       "  " + signedText("%.3f", lowestNode->min_mm) + " mm at " + formatted("%.2f", lowestNode->time_ms) + " ms" });
     }
     g.setFont(plot::font(15.0f));
     g.setColour(kNote);
     for (const auto& line : lines)
     {
-        g.drawText(plot::toJuce(line), juce::Rectangle<float>(x + 4.0f, y, boxWidth, 20.0f),
-                   juce::Justification::centredLeft, false);
+        g.drawText(plot::toJuce(line), juce::Rectangle<float>(x + 4.0f, y, boxWidth, 20.0f), juce::Justification::centredLeft, false);
         y += 21.0f;
     }
 

@@ -34,8 +34,7 @@ public:
 
     // drum: the drum to be rendered (for the wires' layout); firstStrikeSample: the sample of
     // the first strike played (none: the window starts at time 0).
-    SnarePlot(const Drum& drum, std::int64_t numSamples, double sampleRate_Hz,
-              std::optional<std::int64_t> firstStrikeSample);
+    SnarePlot(const Drum& drum, std::int64_t numSamples, double sampleRate_Hz, std::optional<std::int64_t> firstStrikeSample);
 
     // The window in time indices: the drum's state at time n exists after the step of sample
     // n - 1 (time 0: before the first step). [firstTime(), lastTime()], both inclusive.

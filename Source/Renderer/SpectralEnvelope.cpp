@@ -37,7 +37,7 @@ SpectralEnvelope spectralEnvelope(std::span<const double> samples, double rate, 
     fft.SetFlag(Eigen::FFT<double>::HalfSpectrum);
     std::vector<double> frame(fftSize);
     std::vector<std::complex<double>> spectrum;
-    std::vector<double> energy((std::size_t) (F * B), 0.0);
+    std::vector<double> energy((std::size_t)(F * B), 0.0);
     for (int t = 0; t < F; ++t)
     {
         std::fill(frame.begin(), frame.end(), 0.0);
@@ -47,7 +47,7 @@ SpectralEnvelope spectralEnvelope(std::span<const double> samples, double rate, 
         fft.fwd(spectrum, frame);
         for (std::size_t k = 0; k < bandOf.size(); ++k)
             if (bandOf[k] >= 0)
-                energy[(std::size_t) (t * B + bandOf[k])] += std::norm(spectrum[k]);
+                energy[(std::size_t)(t * B + bandOf[k])] += std::norm(spectrum[k]);
     }
 
     const double total = std::accumulate(energy.begin(), energy.end(), 0.0);

@@ -21,7 +21,7 @@ struct SpectralEnvelope
 
     std::vector<double> level_dB; // kFrames x kBands, frame-major
 
-    double at(int frame, int band) const { return level_dB[(std::size_t) (frame * kBands + band)]; }
+    double at(int frame, int band) const { return level_dB[(std::size_t)(frame * kBands + band)]; }
 };
 
 // The centre of band b (0 .. kBands - 1), Hz.

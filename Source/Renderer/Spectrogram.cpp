@@ -79,10 +79,10 @@ Spectrogram::Spectrogram(std::int64_t numSamples, double sampleRate_Hz, std::str
     }
 
     frameIn.assign((std::size_t) fftSize, 0.0);
-    power.assign((std::size_t) (slots * rows), 0.0f);
+    power.assign((std::size_t)(slots * rows), 0.0f);
     counts.assign((std::size_t) slots, 0);
     fft.SetFlag(Eigen::FFT<double>::HalfSpectrum);
-    pending.reserve((std::size_t) (windowSize + 4096));
+    pending.reserve((std::size_t)(windowSize + 4096));
 }
 
 void Spectrogram::add(std::span<const float> block)
@@ -124,10 +124,7 @@ void Spectrogram::analyseFrame()
     pending.erase(pending.begin(), pending.begin() + std::min<std::ptrdiff_t>(hop, (std::ptrdiff_t) pending.size()));
 }
 
-juce::Colour Spectrogram::colourAt(double dB, double top) const
-{
-    return mapColour((dB - (top - rangeDb)) / rangeDb);
-}
+juce::Colour Spectrogram::colourAt(double dB, double top) const { return mapColour((dB - (top - rangeDb)) / rangeDb); }
 
 juce::Image Spectrogram::draw()
 {
@@ -159,11 +156,11 @@ juce::Image Spectrogram::draw()
             int count = 0;
             for (auto s = firstSlot; s <= lastSlot; ++s)
             {
-                sum += power[(std::size_t) (s * rows + r)];
+                sum += power[(std::size_t)(s * rows + r)];
                 count += counts[(std::size_t) s];
             }
             const double value = 10.0 * std::log10(std::max(sum / std::max(count, 1), (double) kFloorPower));
-            dB[(std::size_t) (x * rows + r)] = (float) value;
+            dB[(std::size_t)(x * rows + r)] = (float) value;
             loudest = std::max(loudest, value);
         }
     }
@@ -178,8 +175,7 @@ juce::Image Spectrogram::draw()
         juce::Image::BitmapData pixels(image, juce::Image::BitmapData::writeOnly);
         for (int x = 0; x < columns; ++x)
             for (int r = 0; r < rows; ++r)
-                pixels.setPixelColour(kArea.getX() + x, kArea.getBottom() - 1 - r,
-                                      colourAt(dB[(std::size_t) (x * rows + r)], top));
+                pixels.setPixelColour(kArea.getX() + x, kArea.getBottom() - 1 - r, colourAt(dB[(std::size_t)(x * rows + r)], top));
         for (int y = 0; y < kColourBar.getHeight(); ++y)
         {
             const auto colour = mapColour(1.0 - (y + 0.5) / kColourBar.getHeight());
@@ -209,11 +205,10 @@ juce::Image Spectrogram::draw()
     const auto timeTicks = plot::niceTicks(0.0, seconds, 10);
     const double timeStep = plot::tickStep(timeTicks);
     plot::Axes axes { kArea.toFloat(), 0.0, seconds, lowestFrequency_Hz, nyquist, false, true };
-    const auto title = "Spectrogram (" + name + "): Hann " + std::to_string(windowSize) + " samples ("
-                       + formatted("%.1f", 1000.0 * windowSize / sampleRate) + " ms), 75 % overlap, "
-                       + formatted("%.0f", sampleRate) + " Hz";
-    plot::drawAxes(g, axes, plot::labelled(timeTicks, [&](double v) { return plot::decimalLabel(v, timeStep); }),
-                   yTicks, { title, "time (s)", "frequency (Hz)" }, false);
+    const auto title = "Spectrogram (" + name + "): Hann " + std::to_string(windowSize) + " samples (" +
+                       formatted("%.1f", 1000.0 * windowSize / sampleRate) + " ms), 75 % overlap, " + formatted("%.0f", sampleRate) + " Hz";
+    plot::drawAxes(g, axes, plot::labelled(timeTicks, [&](double v) { return plot::decimalLabel(v, timeStep); }), yTicks,
+                   { title, "time (s)", "frequency (Hz)" }, false);
 
     // The colour bar: 10 dB ticks.
     const plot::Axes bar { kColourBar.toFloat(), 0.0, 1.0, top - rangeDb, top };
@@ -227,8 +222,8 @@ juce::Image Spectrogram::draw()
         g.drawText(formatted("%.0f", level), juce::Rectangle<float>((float) kColourBar.getRight() + 8.0f, y - 9.0f, 50.0f, 18.0f),
                    juce::Justification::centredLeft, false);
     }
-    plot::drawVerticalText(g, "magnitude (dB re full-scale sine)", (float) kColourBar.getRight() + 70.0f,
-                           (float) kColourBar.getCentreY(), plot::font(17.0f));
+    plot::drawVerticalText(g, "magnitude (dB re full-scale sine)", (float) kColourBar.getRight() + 70.0f, (float) kColourBar.getCentreY(),
+                           plot::font(17.0f));
     return image;
 }
 

@@ -61,8 +61,8 @@ public:
 private:
     struct RowBins
     {
-        int first = 0, last = -1;          // bins whose centre lies in the row: the maximum of them
-        int below = 0;                     // otherwise: interpolated between bins below and below + 1
+        int first = 0, last = -1; // bins whose centre lies in the row: the maximum of them
+        int below = 0;            // otherwise: interpolated between bins below and below + 1
         double fraction = 0.0;
     };
 
@@ -73,18 +73,18 @@ private:
     double sampleRate;
     std::string name;
     int windowSize, hop, fftSize, rows;
-    std::int64_t frames;       // frames the whole render gives
+    std::int64_t frames; // frames the whole render gives
     std::int64_t framesDone = 0;
-    std::int64_t slots;        // stored columns: consecutive frames share one beyond kMaxSlots
+    std::int64_t slots; // stored columns: consecutive frames share one beyond kMaxSlots
 
     std::vector<double> window;
     double windowSum = 0.0;
     std::vector<RowBins> rowBins;
-    std::vector<float> pending;    // samples from the next frame's start on
+    std::vector<float> pending; // samples from the next frame's start on
     std::vector<double> frameIn;
     std::vector<std::complex<double>> frameOut;
-    std::vector<float> power;      // slots x rows, summed power
-    std::vector<int> counts;       // frames per slot
+    std::vector<float> power; // slots x rows, summed power
+    std::vector<int> counts;  // frames per slot
     Eigen::FFT<double> fft;
 };
 

@@ -85,7 +85,7 @@ StrikeFeatures measureStrike(std::span<const double> samples, double rate, Strik
         const long hi = std::min((long) n - 1, i + shift), lo = std::max(0L, i + shift - window + 1);
         power[(std::size_t) i] = hi >= lo ? (prefix[(std::size_t) hi + 1] - prefix[(std::size_t) lo]) / (double) window : 0.0;
     }
-    const auto peakAt = (std::size_t) (std::max_element(power.begin(), power.end()) - power.begin());
+    const auto peakAt = (std::size_t)(std::max_element(power.begin(), power.end()) - power.begin());
     const double peakPower = power[peakAt];
     if (rules == StrikeRules::recording && (double) peakAt - (double) onset > 0.100 * rate)
         throw NotAStrike(formatted("no strike (the level peaks %.0f ms after the onset)", 1e3 * ((double) peakAt - (double) onset) / rate));

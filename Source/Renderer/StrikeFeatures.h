@@ -31,13 +31,13 @@ inline constexpr std::array<std::string_view, 5> kShareBandNames { "<1k", "1-2k"
 struct StrikeFeatures
 {
     double sampleRate_Hz = 0.0;
-    std::size_t onset = 0;                     // sample index of the onset (t = 0)
-    double length_ms = 0.0;                    // from the onset to the end of the samples
-    std::optional<double> tailCentroid_Hz;     // 50-300 ms; empty when under 10 ms of tail
-    std::array<double, 5> bandShares {};       // of the first 300 ms; they sum to 1
-    std::optional<double> fall20_ms;           // empty when the samples end first
+    std::size_t onset = 0;                 // sample index of the onset (t = 0)
+    double length_ms = 0.0;                // from the onset to the end of the samples
+    std::optional<double> tailCentroid_Hz; // 50-300 ms; empty when under 10 ms of tail
+    std::array<double, 5> bandShares {};   // of the first 300 ms; they sum to 1
+    std::optional<double> fall20_ms;       // empty when the samples end first
     std::optional<double> fall40_ms;
-    std::optional<double> lowestPeak_Hz;       // empty when no peak qualifies
+    std::optional<double> lowestPeak_Hz; // empty when no peak qualifies
     // Every peak of that spectrum found as the lowest strong peak is, but down to 24 dB below
     // the largest value: (Hz, dB relative to it), lowest first. --match compares each strike's
     // lowest strong peak with the other's peaks, so that a mode just above 12 dB down in one

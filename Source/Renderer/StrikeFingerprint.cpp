@@ -18,10 +18,10 @@ namespace
 
 constexpr std::size_t kShortestWindow = 16;
 constexpr std::size_t kShortestTransform = 8192;
-constexpr double kSilent = 1e-7;          // -140 dB of full scale
-constexpr double kOnsetThreshold = 0.05;  // of the peak
+constexpr double kSilent = 1e-7;         // -140 dB of full scale
+constexpr double kOnsetThreshold = 0.05; // of the peak
 constexpr double kOnsetLead_s = 0.001;
-constexpr double kLeastFall_dB = 3.0;     // a strike's tail below its attack
+constexpr double kLeastFall_dB = 3.0; // a strike's tail below its attack
 
 // The band energies of one window: Hann-weighted, zero-padded, |rfft|^2 summed per band.
 std::array<double, StrikeFingerprint::kBands> bandEnergies(std::span<const double> window, double rate)
@@ -94,13 +94,13 @@ StrikeFingerprint strikeFingerprint(std::span<const double> samples, double rate
     std::size_t firstLoud = 0;
     while (! (std::abs(x[firstLoud]) > kOnsetThreshold))
         ++firstLoud;
-    const auto lead = (std::size_t) (kOnsetLead_s * rate);
+    const auto lead = (std::size_t)(kOnsetLead_s * rate);
     const std::span<const double> strike = std::span<const double>(x).subspan(firstLoud > lead ? firstLoud - lead : 0);
 
     // Window w: samples int(a * rate) to int(b * rate) of the strike, as far as it goes.
     auto window = [&](int w) {
-        const auto from = std::min((std::size_t) (StrikeFingerprint::kWindowEdges_s[(std::size_t) w] * rate), strike.size());
-        const auto to = std::min((std::size_t) (StrikeFingerprint::kWindowEdges_s[(std::size_t) w + 1] * rate), strike.size());
+        const auto from = std::min((std::size_t)(StrikeFingerprint::kWindowEdges_s[(std::size_t) w] * rate), strike.size());
+        const auto to = std::min((std::size_t)(StrikeFingerprint::kWindowEdges_s[(std::size_t) w + 1] * rate), strike.size());
         return strike.subspan(from, std::max(from, to) - from);
     };
 

@@ -30,7 +30,7 @@ struct StrikeFingerprint
 
     std::array<double, kCells> level_dB {}; // window-major
 
-    double at(int window, int band) const { return level_dB[(std::size_t) (window * kBands + band)]; }
+    double at(int window, int band) const { return level_dB[(std::size_t)(window * kBands + band)]; }
 };
 
 // The centre of band k (0 .. kBands - 1), Hz.
@@ -40,8 +40,7 @@ double fingerprintBandCentre_Hz(int band);
 // are empty, not finite, silent (peak below -140 dB of full scale) or, with the recording rules,
 // hold no strike: their level does not fall, the RMS of 100-300 ms after the onset less than
 // 3 dB below that of the first 30 ms (a candidate of --match may ring longer).
-StrikeFingerprint strikeFingerprint(std::span<const double> samples, double sampleRate_Hz,
-                                    StrikeRules rules = StrikeRules::recording);
+StrikeFingerprint strikeFingerprint(std::span<const double> samples, double sampleRate_Hz, StrikeRules rules = StrikeRules::recording);
 
 // The RMS of the 69 differences, dB: 0 for the same strike, symmetric.
 double strikeDistance_dB(const StrikeFingerprint& a, const StrikeFingerprint& b);

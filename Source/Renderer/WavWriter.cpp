@@ -12,20 +12,15 @@ namespace snaresim::render
 namespace
 {
 
-juce::File toJuceFile(const std::filesystem::path& path)
-{
-    return juce::File(juce::String(std::filesystem::absolute(path).string()));
-}
+juce::File toJuceFile(const std::filesystem::path& path) { return juce::File(juce::String(std::filesystem::absolute(path).string())); }
 
 } // namespace
 
-WavWriter::WavWriter(const AtomicFile& target, double sampleRate_Hz, int numChannels)
-    : file(target), channels(numChannels)
+WavWriter::WavWriter(const AtomicFile& target, double sampleRate_Hz, int numChannels) : file(target), channels(numChannels)
 {
     auto output = std::make_unique<juce::FileOutputStream>(toJuceFile(file.temporary()));
     if (! output->openedOk())
-        throw UserError("cannot write " + file.displayName() + ": "
-                        + output->getStatus().getErrorMessage().toStdString());
+        throw UserError("cannot write " + file.displayName() + ": " + output->getStatus().getErrorMessage().toStdString());
 
     // The temporary was created empty by AtomicFile; make sure (FileOutputStream appends).
     output->setPosition(0);
@@ -34,8 +29,8 @@ WavWriter::WavWriter(const AtomicFile& target, double sampleRate_Hz, int numChan
     juce::WavAudioFormat wav;
     writer.reset(wav.createWriterFor(output.get(), sampleRate_Hz, (unsigned) numChannels, 32, {}, 0));
     if (writer == nullptr)
-        throw UserError("cannot write " + file.displayName() + ": the WAV format does not take "
-                        + std::to_string(numChannels) + " channel(s) of 32-bit float");
+        throw UserError("cannot write " + file.displayName() + ": the WAV format does not take " + std::to_string(numChannels) +
+                        " channel(s) of 32-bit float");
     stream = output.release(); // now owned by the writer
     if (! stream->getStatus().wasOk())
         writeFailed();
@@ -45,9 +40,8 @@ WavWriter::~WavWriter() = default;
 
 void WavWriter::writeFailed() const
 {
-    const auto reason = stream != nullptr && stream->getStatus().failed()
-                            ? stream->getStatus().getErrorMessage().toStdString()
-                            : std::string("write error");
+    const auto reason = stream != nullptr && stream->getStatus().failed() ? stream->getStatus().getErrorMessage().toStdString()
+                                                                          : std::string("write error");
     throw UserError("cannot write " + file.displayName() + ": " + reason);
 }
 
@@ -75,8 +69,8 @@ void WavWriter::finish()
     const auto size = std::filesystem::file_size(file.temporary(), ec);
     const auto dataBytes = (std::uintmax_t) written * (std::uintmax_t) channels * 4u;
     if (ec || size < dataBytes)
-        throw UserError("cannot write " + file.displayName() + ": the file is incomplete"
-                        + (ec ? " (" + ec.message() + ")" : std::string()));
+        throw UserError("cannot write " + file.displayName() + ": the file is incomplete" +
+                        (ec ? " (" + ec.message() + ")" : std::string()));
 }
 
 } // namespace snaresim::render

@@ -43,11 +43,25 @@ void* operator new(std::size_t size) { return snaresim::test::countedAllocate(si
 void* operator new[](std::size_t size) { return snaresim::test::countedAllocate(size); }
 void* operator new(std::size_t size, const std::nothrow_t&) noexcept
 {
-    try { return snaresim::test::countedAllocate(size); } catch (...) { return nullptr; }
+    try
+    {
+        return snaresim::test::countedAllocate(size);
+    }
+    catch (...)
+    {
+        return nullptr;
+    }
 }
 void* operator new[](std::size_t size, const std::nothrow_t&) noexcept
 {
-    try { return snaresim::test::countedAllocate(size); } catch (...) { return nullptr; }
+    try
+    {
+        return snaresim::test::countedAllocate(size);
+    }
+    catch (...)
+    {
+        return nullptr;
+    }
 }
 void* operator new(std::size_t size, std::align_val_t a) { return snaresim::test::countedAllocateAligned(size, a); }
 void* operator new[](std::size_t size, std::align_val_t a) { return snaresim::test::countedAllocateAligned(size, a); }

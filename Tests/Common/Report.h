@@ -32,9 +32,6 @@ void reportf(const char* format, Args... args)
 }
 
 // stdout while reporting, else nullptr (for helpers that print where they are told).
-inline std::FILE* reportFile()
-{
-    return reporting() ? stdout : nullptr;
-}
+inline std::FILE* reportFile() { return reporting() ? stdout : nullptr; }
 
 } // namespace snaresim::test

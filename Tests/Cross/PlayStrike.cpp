@@ -27,7 +27,7 @@ int main()
         }
         peak = std::max(peak, std::abs(x));
     }
-    std::printf("0.1 s of the default drum on the %s vector target: peak %.4g\n",
-                std::string(vectorTargetName(vectorTarget())).c_str(), peak);
+    std::printf("0.1 s of the default drum on the %s vector target: peak %.4g\n", std::string(vectorTargetName(vectorTarget())).c_str(),
+                peak);
     return peak > 1e-3 && peak < 10.0 ? 0 : 1;
 }

@@ -1,8 +1,8 @@
 // The 3D air box (eq. 5, 25, 36, 41, 51): grid bound, energy to round-off, absorbing walls,
 // free-field propagation.
 
-#include "Report.h"
 #include "AirBox.h"
+#include "Report.h"
 
 #include <catch2/catch.hpp>
 
@@ -37,7 +37,7 @@ TEST_CASE("the air grid follows the stability bound eq. 41", "[airbox]")
     CHECK(box.spacing() == Approx(13.47e-3).epsilon(0.001));
     // a 0.6 m cube: ceil(0.6 / h) = 45 points a side, 91 125 in all
     snaresim::test::reportf("air box 0.6 m cube at 44.1 kHz: h = %.5f m, %d x %d x %d = %ld points\n", box.spacing(), box.nx(), box.ny(),
-                box.nz(), box.numPoints());
+                            box.nz(), box.numPoints());
     CHECK(box.nx() == 45);
     CHECK(box.numPoints() == 91125);
 
@@ -102,8 +102,9 @@ TEST_CASE("lossless air in a reflecting box with the shell conserves its energy 
         box.computeNext();
         drift = std::max(drift, std::abs(box.energy() - e0) / e0);
     }
-    snaresim::test::reportf("lossless air box, reflecting walls, shell closed, %ld points: energy relative variation %.3g over 10 000 steps\n",
-                box.numPoints(), drift);
+    snaresim::test::reportf(
+        "lossless air box, reflecting walls, shell closed, %ld points: energy relative variation %.3g over 10 000 steps\n", box.numPoints(),
+        drift);
     CHECK(drift < 1e-11);
 }
 
@@ -130,8 +131,9 @@ TEST_CASE("the air's losses are exactly what its energy loses", "[airbox][energy
         lost += q;
         prev = e;
     }
-    snaresim::test::reportf("lossy air box: |energy(n+1) + loss - energy(n)| / energy(0) at most %.3g; %.3g of the energy lost, %.3g left\n", worst,
-                lost / e0, prev / e0);
+    snaresim::test::reportf(
+        "lossy air box: |energy(n+1) + loss - energy(n)| / energy(0) at most %.3g; %.3g of the energy lost, %.3g left\n", worst, lost / e0,
+        prev / e0);
     CHECK(worst < 1e-13);
 }
 
@@ -155,10 +157,11 @@ TEST_CASE("absorbing walls let a pulse leave the box and the energy never rises"
         rise = std::max(rise, (e - prev) / e0);
         prev = e;
     }
-    snaresim::test::reportf("absorbing walls: largest rise from one step to the next %.3g of energy(0); after %d steps %.3g of the energy is left\n",
-                rise, steps, prev / e0);
-    CHECK(rise < 1e-14);      // within round-off of the total
-    CHECK(prev < 0.05 * e0);  // most of it has left
+    snaresim::test::reportf(
+        "absorbing walls: largest rise from one step to the next %.3g of energy(0); after %d steps %.3g of the energy is left\n", rise,
+        steps, prev / e0);
+    CHECK(rise < 1e-14);     // within round-off of the total
+    CHECK(prev < 0.05 * e0); // most of it has left
 }
 
 TEST_CASE("a pulse in free field arrives after r / c and falls as 1 / r", "[airbox]")
@@ -205,8 +208,8 @@ TEST_CASE("a pulse in free field arrives after r / c and falls as 1 / r", "[airb
     }
     const double ratio = best[0] / best[1];
     snaresim::test::reportf("free field: arrival at %.3f m after %.4f ms (r/c = %.4f ms), at %.3f m after %.4f ms (r/c = %.4f ms); "
-                "h / c = %.4f ms; peak ratio %.4f against r2/r1 = %.4f\n",
-                r1, 1e3 * arrival[0], 1e3 * r1 / c, r2, 1e3 * arrival[1], 1e3 * r2 / c, 1e3 * h / c, ratio, r2 / r1);
+                            "h / c = %.4f ms; peak ratio %.4f against r2/r1 = %.4f\n",
+                            r1, 1e3 * arrival[0], 1e3 * r1 / c, r2, 1e3 * arrival[1], 1e3 * r2 / c, 1e3 * h / c, ratio, r2 / r1);
     CHECK(std::abs(arrival[0] - r1 / c) < h / c);
     CHECK(std::abs(arrival[1] - r2 / c) < h / c);
     CHECK(ratio == Approx(r2 / r1).epsilon(0.05));

@@ -2,8 +2,8 @@
 // 0.196 Fs, where the 7-point scheme's axial waves stop travelling, and sigma_a damps that band
 // by the rate eq. 25 gives every air mode of its frequency (AirBandRun.h).
 
-#include "Report.h"
 #include "AirBandRun.h"
+#include "Report.h"
 
 #include <catch2/catch.hpp>
 
@@ -41,12 +41,13 @@ TEST_CASE("section 5.3: the air grid's band near 0.196 Fs rings on, and sigma_a 
     const MembraneSpec head = test::bandBatter(fs);
     const double kappa = 2.0 * std::numbers::pi * band0.peak_Hz / std::sqrt(head.tension_N_per_m / head.density_kg_per_m2);
     const double headRate = 20.0 * std::log10(std::exp(1.0)) * (head.sigma0_per_s + head.sigma1_m2_per_s * kappa * kappa);
-    snaresim::test::reportf("section 5.3 (box %.2f x %.2f x %.2f m, %.2f s): band at %.0f Hz = %.4f Fs (axial cutoff %.0f Hz), %.1f dB above 0.17 Fs; "
-                "decay %.1f dB/s with sigma_a = 0, %.1f dB/s with 2e-6 m: sigma_a adds %.1f dB/s (eq. 25: %.1f); the head alone "
-                "would fade at %.0f dB/s there\n",
-                setup.box_m[0], setup.box_m[1], setup.box_m[2], setup.seconds, band0.peak_Hz, band0.peak_Hz / fs, cutoff,
-                band0.level_dB - below.level_dB, band0.rate_dB_per_s, band1.rate_dB_per_s, band1.rate_dB_per_s - band0.rate_dB_per_s,
-                predicted, headRate);
+    snaresim::test::reportf(
+        "section 5.3 (box %.2f x %.2f x %.2f m, %.2f s): band at %.0f Hz = %.4f Fs (axial cutoff %.0f Hz), %.1f dB above 0.17 Fs; "
+        "decay %.1f dB/s with sigma_a = 0, %.1f dB/s with 2e-6 m: sigma_a adds %.1f dB/s (eq. 25: %.1f); the head alone "
+        "would fade at %.0f dB/s there\n",
+        setup.box_m[0], setup.box_m[1], setup.box_m[2], setup.seconds, band0.peak_Hz, band0.peak_Hz / fs, cutoff,
+        band0.level_dB - below.level_dB, band0.rate_dB_per_s, band1.rate_dB_per_s, band1.rate_dB_per_s - band0.rate_dB_per_s, predicted,
+        headRate);
 
     // The band lies at the axial cutoff (to a bin of the 512-point frames, 86 Hz) and stands
     // out: many of the grid's modes crowd there, and the spectrum just below is far weaker.

@@ -53,7 +53,7 @@ TEST_CASE("strikes, steps, the snares switch and reset allocate nothing, with th
             if (n == 1800)
                 drum.playNote(34, 100); // snares on
             sum += drum.step();
-            copy = drum.energy();       // as the renderer keeps every sample's ledger
+            copy = drum.energy(); // as the renderer keeps every sample's ledger
             sum += copy.balance();
         }
         drum.reset();

@@ -76,13 +76,15 @@ TEST_CASE("cavity modes: the lossless whole drum with them conserves energy to r
     drum.strike(5.0, 0.3, 0.1);
     const double e0 = drum.energy().total();
     double largest = 0.0;
-    const double drift = test::balanceDrift(drum, 10000, [&] { largest = std::max(largest, std::abs(drum.energy().value("cavity_modes"))); });
+    const double drift =
+        test::balanceDrift(drum, 10000, [&] { largest = std::max(largest, std::abs(drum.energy().value("cavity_modes"))); });
     INFO("relative variation " << drift << ", the modes' largest energy " << largest / e0 << " of the strike's");
     CHECK(drift < 1e-11);
     CHECK(largest > 1e-4 * e0); // the modes really hold energy
 }
 
-TEST_CASE("cavity modes: with single-precision heads the lossless drum holds its energy to float round-off", "[cavitymodes][energy][precision]")
+TEST_CASE("cavity modes: with single-precision heads the lossless drum holds its energy to float round-off",
+          "[cavitymodes][energy][precision]")
 {
     // The product's heads: the modes' pressures go into the float free update node by node
     // (Membrane::addBlockPressure). Bound as for the heads alone (HeadPrecisionTests.cpp):

@@ -11,10 +11,10 @@
 
 #include <catch2/catch.hpp>
 
-#include "Report.h"
 #include "Drum.h"
 #include "DrumConfig.h"
 #include "Parameters.h"
+#include "Report.h"
 
 #include <algorithm>
 #include <atomic>
@@ -54,8 +54,8 @@ struct Outcome
     std::string error;
     double peak = 0.0;
     long nonFiniteSamples = 0;
-    int nonFiniteStates = 0;    // checks of the whole state that found a non-finite value
-    double worstRise = 0.0;     // relative to the largest total energy
+    int nonFiniteStates = 0; // checks of the whole state that found a non-finite value
+    double worstRise = 0.0;  // relative to the largest total energy
     double maxTotal_J = 0.0;
 };
 
@@ -92,7 +92,7 @@ Outcome playRoll(const ParameterSet& params, double seconds)
             }
 
             const double y = drum.step();
-            if (!std::isfinite(y))
+            if (! std::isfinite(y))
                 ++out.nonFiniteSamples;
             else
                 out.peak = std::max(out.peak, std::abs(y));
@@ -104,7 +104,7 @@ Outcome playRoll(const ParameterSet& params, double seconds)
                 out.worstRise = std::max(out.worstRise, (held - previous) / out.maxTotal_J);
             previous = held;
 
-            if (n % 1024 == 1023 && !drum.isFinite())
+            if (n % 1024 == 1023 && ! drum.isFinite())
                 ++out.nonFiniteStates;
         }
     }
@@ -135,9 +135,8 @@ std::vector<Corner> corners()
         for (const auto& spec : parameterSpecs())
         {
             const double u = unit(random);
-            double v = spec.scale == ParamScale::logarithmic
-                           ? spec.minValue * std::pow(spec.maxValue / spec.minValue, u)
-                           : spec.minValue + u * (spec.maxValue - spec.minValue);
+            double v = spec.scale == ParamScale::logarithmic ? spec.minValue * std::pow(spec.maxValue / spec.minValue, u)
+                                                             : spec.minValue + u * (spec.maxValue - spec.minValue);
             if (spec.kind != ParamKind::continuous)
                 v = std::round(v);
             p.setClamped(spec.id, v);
@@ -176,12 +175,10 @@ TEST_CASE("every parameter at its limits and random combinations play a fortissi
     std::vector<Outcome> outcomes(list.size());
 
     std::atomic<std::size_t> next { 0 };
-    auto worker = [&]
-    {
+    auto worker = [&] {
         for (std::size_t i = next++; i < list.size(); i = next++)
             outcomes[i] = playRoll(list[i].params,
-                                   list[i].params.get(ParamId::airModel) == (double) AirModel::airbox ? kAirBoxShare * seconds
-                                                                                                       : seconds);
+                                   list[i].params.get(ParamId::airModel) == (double) AirModel::airbox ? kAirBoxShare * seconds : seconds);
     };
     const unsigned threads = std::max(1u, std::min(4u, std::thread::hardware_concurrency()));
     std::vector<std::thread> pool;
@@ -196,8 +193,8 @@ TEST_CASE("every parameter at its limits and random combinations play a fortissi
     for (std::size_t i = 0; i < list.size(); ++i)
     {
         const auto& o = outcomes[i];
-        INFO(list[i].name << ": peak " << o.peak << ", worst energy rise " << o.worstRise << " of the largest total "
-                          << o.maxTotal_J << " J" << (o.error.empty() ? "" : ", error: " + o.error));
+        INFO(list[i].name << ": peak " << o.peak << ", worst energy rise " << o.worstRise << " of the largest total " << o.maxTotal_J
+                          << " J" << (o.error.empty() ? "" : ", error: " + o.error));
         CHECK(o.built);
         CHECK(o.nonFiniteSamples == 0);
         CHECK(o.nonFiniteStates == 0);
@@ -213,10 +210,9 @@ TEST_CASE("every parameter at its limits and random combinations play a fortissi
     }
 
     snaresim::test::report() << "corners: " << list.size() << " drums (" << 2 * kNumParameters << " at parameter limits, "
-              << kRandomCombinations << " random, " << kAirBoxCombinations << " random in the air box), " << seconds
-              << " s fortissimo roll each (the air box: " << kAirBoxShare * seconds << " s) at "
-              << kSampleRate << " Hz on " << threads << " threads; failed builds " << failedBuilds
-              << ", non-finite samples " << nonFiniteSamples << ", non-finite guard triggers " << nonFiniteStates
-              << ", largest peak " << peak << " (bound " << kOutputBound << "), worst energy rise per step "
-              << worstRise << " of the total (tolerance " << kRiseTolerance << ")\n";
+                             << kRandomCombinations << " random, " << kAirBoxCombinations << " random in the air box), " << seconds
+                             << " s fortissimo roll each (the air box: " << kAirBoxShare * seconds << " s) at " << kSampleRate << " Hz on "
+                             << threads << " threads; failed builds " << failedBuilds << ", non-finite samples " << nonFiniteSamples
+                             << ", non-finite guard triggers " << nonFiniteStates << ", largest peak " << peak << " (bound " << kOutputBound
+                             << "), worst energy rise per step " << worstRise << " of the total (tolerance " << kRiseTolerance << ")\n";
 }

@@ -2,9 +2,9 @@
 // heads' contacts solved jointly with their air, passivity with losses, the heads' (0,1) pair
 // through the air, the paper's section 5.2 in the box, and the config's checks.
 
-#include "Report.h"
 #include "BatterModes.h"
 #include "ModePairs.h"
+#include "Report.h"
 #include "Section52.h"
 #include "SpectrumPeaks.h"
 #include "TestDrums.h"
@@ -53,10 +53,11 @@ TEST_CASE("the whole drum in a lossless, reflecting air box conserves energy to 
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const auto& st = drum.solverStats();
-    snaresim::test::reportf("air box, %s, 20 wires: relative energy variation %.3g over %d steps; air's largest energy %.3g J "
-                "(%.2g of the strike's); contact trials per head and step: most %d, mean %.2f, capped %ld; psi resets removed %.3g; %.1f s\n",
-                nameOf(cfg.snares.scheme), drift, steps, airPeak, airPeak / e0, st.maxAirTrials, st.airTrials / (2.0 * steps), st.airCapped,
-                drum.energy().dissipated_J / e0, seconds);
+    snaresim::test::reportf(
+        "air box, %s, 20 wires: relative energy variation %.3g over %d steps; air's largest energy %.3g J "
+        "(%.2g of the strike's); contact trials per head and step: most %d, mean %.2f, capped %ld; psi resets removed %.3g; %.1f s\n",
+        nameOf(cfg.snares.scheme), drift, steps, airPeak, airPeak / e0, st.maxAirTrials, st.airTrials / (2.0 * steps), st.airCapped,
+        drum.energy().dissipated_J / e0, seconds);
     CHECK(airPeak > 1e-6 * e0); // the air takes part
     CHECK(st.airCapped == 0);
     CHECK(drift < 1e-11);
@@ -86,8 +87,8 @@ TEST_CASE("the drum in an absorbing, lossy air box never gains energy from one s
         previous = e;
     }
     snaresim::test::reportf("air box, absorbing walls, losses on: largest rise from one step to the next %.3g of the strike's energy; "
-                "balance varies by %.3g; the air's losses took %.3g J (%.3g of it)\n",
-                worstRise, drift, airLoss, airLoss / e0);
+                            "balance varies by %.3g; the air's losses took %.3g J (%.3g of it)\n",
+                            worstRise, drift, airLoss, airLoss / e0);
     CHECK(worstRise <= 1e-14);
     CHECK(drift < 1e-11);
     CHECK(airLoss > 0.0);
@@ -110,8 +111,8 @@ TEST_CASE("the air box couples the heads: their (0,1) in-phase and anti-phase pa
     const test::SweptVolumes openRun = test::sweptVolumes(open);
     const test::ModePair inOpenBox = test::measuredPairs(openRun, { 0.0, inBox.antiPhase });
     snaresim::test::reportf("(0,1) pair, 14 cm shell: cavity %.1f / %.1f Hz; air box 0.6 m, reflecting walls %.1f / %.1f Hz; "
-                "absorbing walls %.1f / %.1f Hz (in phase / anti-phase)\n",
-                inCavity.inPhase, inCavity.antiPhase, inBox.inPhase, inBox.antiPhase, inOpenBox.inPhase, inOpenBox.antiPhase);
+                            "absorbing walls %.1f / %.1f Hz (in phase / anti-phase)\n",
+                            inCavity.inPhase, inCavity.antiPhase, inBox.inPhase, inBox.antiPhase, inOpenBox.inPhase, inOpenBox.antiPhase);
     // The air inside the shell is a spring between the heads, so the anti-phase mode lies above
     // the in-phase one; the air around them adds mass, so the in-phase mode is not above the
     // cavity's (which has no outside air).
@@ -134,8 +135,8 @@ TEST_CASE("the air box couples the heads: their (0,1) in-phase and anti-phase pa
     const double openIn = test::modeDecay_dB_per_s(openRun, +1.0, inOpenBox.inPhase);
     const double openAnti = test::modeDecay_dB_per_s(openRun, -1.0, inOpenBox.antiPhase);
     snaresim::test::reportf("(0,1) pair decay (dB/s, in phase / anti-phase): cavity %.3f / %.3f; air box, reflecting walls %.3f / %.3f; "
-                "absorbing walls %.1f / %.1f (T60 %.3f / %.3f s)\n",
-                cavityIn, cavityAnti, boxIn, boxAnti, openIn, openAnti, 60.0 / openIn, 60.0 / openAnti);
+                            "absorbing walls %.1f / %.1f (T60 %.3f / %.3f s)\n",
+                            cavityIn, cavityAnti, boxIn, boxAnti, openIn, openAnti, 60.0 / openIn, 60.0 / openAnti);
     // Lossless: no slope beyond the beating of neighbouring modes, 1 dB over the fit's span (at most 80 % of the record).
     for (double rate : { cavityIn, cavityAnti, boxIn, boxAnti })
         CHECK(std::abs(rate) < 1.0 / (0.8 * (double) cavityRun.batter.size() / cfg.sampleRate_Hz));
@@ -148,12 +149,12 @@ TEST_CASE("the paper's section 5.2 in the air box: when the wires swing down and
     const test::SnareTimes cavity = test::section52(test::section52Config(AirModel::cavity));
     const test::SnareTimes box = test::section52(test::section52Config(AirModel::airbox));
     snaresim::test::reportf("section 5.2 (%d wire points): paper: lowest 6 ms, hit about 9 ms (0 ms: none in 25 ms)\n"
-                "  cavity:  wires' mean lowest at %.2f ms (%.3f mm); all off the head %.2f ms, back on it %.2f ms; "
-                "first hit after 1 ms apart %.2f ms\n"
-                "  air box: wires' mean lowest at %.2f ms (%.3f mm); all off the head %.2f ms, back on it %.2f ms; "
-                "first hit after 1 ms apart %.2f ms\n",
-                box.points, cavity.lowest_ms, cavity.lowestMean_mm, cavity.left_ms, cavity.back_ms, cavity.clean_ms,
-                box.lowest_ms, box.lowestMean_mm, box.left_ms, box.back_ms, box.clean_ms);
+                            "  cavity:  wires' mean lowest at %.2f ms (%.3f mm); all off the head %.2f ms, back on it %.2f ms; "
+                            "first hit after 1 ms apart %.2f ms\n"
+                            "  air box: wires' mean lowest at %.2f ms (%.3f mm); all off the head %.2f ms, back on it %.2f ms; "
+                            "first hit after 1 ms apart %.2f ms\n",
+                            box.points, cavity.lowest_ms, cavity.lowestMean_mm, cavity.left_ms, cavity.back_ms, cavity.clean_ms,
+                            box.lowest_ms, box.lowestMean_mm, box.left_ms, box.back_ms, box.clean_ms);
     // The sequence happens in both: the wires swing down, leave the head and come back.
     for (const auto& t : { cavity, box })
     {
@@ -164,12 +165,14 @@ TEST_CASE("the paper's section 5.2 in the air box: when the wires swing down and
     }
     // The air outside loads both heads with its mass (the cavity has none): the carry head, and
     // the wires with it, reach their lowest point later in the box.
-    snaresim::test::reportf("  carry head under the wires lowest at %.2f ms (cavity), %.2f ms (air box)\n", cavity.carryLowest_ms, box.carryLowest_ms);
+    snaresim::test::reportf("  carry head under the wires lowest at %.2f ms (cavity), %.2f ms (air box)\n", cavity.carryLowest_ms,
+                            box.carryLowest_ms);
     CHECK(box.carryLowest_ms > cavity.carryLowest_ms);
     CHECK(box.swingLowest_ms > cavity.swingLowest_ms);
 }
 
-TEST_CASE("the air microphones hear the strike, and the defaults are the drum's top, bottom and room mics inside the box", "[drum][airbox][mics]")
+TEST_CASE("the air microphones hear the strike, and the defaults are the drum's top, bottom and room mics inside the box",
+          "[drum][airbox][mics]")
 {
     DrumConfig cfg = inAirBox(test::wholeDrum());
     Drum drum(cfg);
@@ -179,7 +182,7 @@ TEST_CASE("the air microphones hear the strike, and the defaults are the drum's 
     // the drum's own microphones (MicSpec); the room mic, 1 m away, held inside the 0.6 m box
     CHECK(box.micPoint(0).x_m == cfg.mics.top.x_m);
     CHECK(box.micPoint(0).z_m == cfg.mics.top.z_m);
-    CHECK(box.micPoint(0).z_m > 0.5 * H);  // above the batter
+    CHECK(box.micPoint(0).z_m > 0.5 * H); // above the batter
     CHECK(box.micPoint(1).y_m == cfg.mics.bottom.y_m);
     CHECK(box.micPoint(1).z_m == cfg.mics.bottom.z_m);
     CHECK(box.micPoint(1).z_m < -0.5 * H); // under the carry head
@@ -294,7 +297,8 @@ TEST_CASE("air box configs that cannot work throw std::invalid_argument with a r
     CHECK(l.airBox.sigma_m == 0.0);
 }
 
-TEST_CASE("the air box's air loads the batter's higher modes with the near field's mass, rho_a / k on each side", "[drum][airbox][modes][nearfield][slow]")
+TEST_CASE("the air box's air loads the batter's higher modes with the near field's mass, rho_a / k on each side",
+          "[drum][airbox][modes][nearfield][slow]")
 {
     // A head mode of wavenumber k = j_mn / R moves far slower than sound, so the air it pushes
     // only sloshes beside it: a field falling as exp(-k |z|) whose pressure is rho_a / k times
@@ -308,8 +312,8 @@ TEST_CASE("the air box's air loads the batter's higher modes with the near field
     // modes within 3 % of the box's (m = 0: 5 %, docs/MODEL.md); without it they keep their
     // vacuum frequencies.
     const std::vector<test::BatterMode> modes { { 2, 5.13562, "(2,1)" }, { 3, 6.38016, "(3,1)" }, { 1, 7.01559, "(1,2)" },
-                                          { 4, 7.58834, "(4,1)" }, { 2, 8.41724, "(2,2)" }, { 0, 5.52008, "(0,2)" },
-                                          { 0, 8.65373, "(0,3)" }, { 1, 10.17347, "(1,3)" } };
+                                                { 4, 7.58834, "(4,1)" }, { 2, 8.41724, "(2,2)" }, { 0, 5.52008, "(0,2)" },
+                                                { 0, 8.65373, "(0,3)" }, { 1, 10.17347, "(1,3)" } };
     DrumConfig cfg = test::wholeDrum();
     cfg.snares.engaged = false;
     DrumConfig vacuum = cfg;
@@ -334,15 +338,17 @@ TEST_CASE("the air box's air loads the batter's higher modes with the near field
     {
         const double k = modes[q].j / R;
         // the head's own mode on its grid, near the continuum's j_mn sqrt(T / rho) / (2 pi R)
-        const double fVacuum = test::peakNear(inVacuum[q], fs, 1.03 * modes[q].j * std::sqrt(cfg.batter.tension_N_per_m / rho) / (2.0 * std::numbers::pi * R));
+        const double fVacuum =
+            test::peakNear(inVacuum[q], fs, 1.03 * modes[q].j * std::sqrt(cfg.batter.tension_N_per_m / rho) / (2.0 * std::numbers::pi * R));
         const double predicted = fVacuum / std::sqrt(1.0 + rhoA * (1.0 + 1.0 / std::tanh(k * H)) / (k * rho));
         const double fBox = test::peakNear(inBox[q], fs, fVacuum);
         const double fRealTime = test::peakNear(inRealTime[q], fs, fVacuum);
         const double fChannels = test::peakNear(withoutNearField[q], fs, fVacuum);
-        snaresim::test::reportf("batter %s: vacuum %.1f Hz, rho_a / k loading %.1f Hz, air box %.1f Hz (%+.1f %%); real time %.1f Hz (%+.1f %% "
-                    "from the box), without the near field %.1f Hz (%+.1f %%)\n",
-                    modes[q].name, fVacuum, predicted, fBox, 100.0 * (fBox / predicted - 1.0), fRealTime, 100.0 * (fRealTime / fBox - 1.0),
-                    fChannels, 100.0 * (fChannels / fBox - 1.0));
+        snaresim::test::reportf(
+            "batter %s: vacuum %.1f Hz, rho_a / k loading %.1f Hz, air box %.1f Hz (%+.1f %%); real time %.1f Hz (%+.1f %% "
+            "from the box), without the near field %.1f Hz (%+.1f %%)\n",
+            modes[q].name, fVacuum, predicted, fBox, 100.0 * (fBox / predicted - 1.0), fRealTime, 100.0 * (fRealTime / fBox - 1.0),
+            fChannels, 100.0 * (fChannels / fBox - 1.0));
         CHECK(std::abs(fRealTime / fBox - 1.0) < (modes[q].m == 0 ? 0.05 : 0.03));
         if (modes[q].m >= 2)
         {

@@ -39,8 +39,8 @@ TEST_CASE("lossless head and mallet conserve the discrete energy to round-off", 
     INFO("max relative energy variation " << maxDrift);
     CHECK(maxDrift < 1e-12);
     CHECK(retrieved);
-    CHECK(peakHead > 0.05 * e0);                       // the contact really moved energy into the head
-    CHECK(drum.solverStats().maxIterations > 0);       // and the contact solve ran
+    CHECK(peakHead > 0.05 * e0);                 // the contact really moved energy into the head
+    CHECK(drum.solverStats().maxIterations > 0); // and the contact solve ran
     CHECK(drum.solverStats().fallbacks == 0);
 }
 
@@ -157,10 +157,10 @@ TEST_CASE("each ledger term moves only when its component is in play", "[energy]
         const auto largest = largestTerms(drum, 4000);
         CHECK(largest.at("batter") > 0.05 * 0.35); // the contact moved energy into the head
         CHECK(largest.at("mallets") > 0.0);
-        CHECK(largest.at("carry") == 0.0);         // no air: nothing reaches the carry head
+        CHECK(largest.at("carry") == 0.0); // no air: nothing reaches the carry head
         CHECK(largest.at("snares") == 0.0);
         CHECK(largest.at("cavity") == 0.0);
-        CHECK(drum.energy().dissipated_J == 0.0);   // lossless
+        CHECK(drum.energy().dissipated_J == 0.0); // lossless
     }
     SECTION("no air, snares on: the wires rest on a carry head nothing moves")
     {

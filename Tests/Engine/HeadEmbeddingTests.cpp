@@ -2,11 +2,11 @@
 // energy to round-off on a head finer and one coarser than the air, a force on a head coarser
 // than the air is solved with it in one go, and the air's mass lowers the head's (0,1) mode.
 
-#include "Report.h"
 #include "AirBox.h"
 #include "HeadEmbedding.h"
 #include "Membrane.h"
 #include "Pluck01.h"
+#include "Report.h"
 #include "SpectrumPeaks.h"
 
 #include <catch2/catch.hpp>
@@ -25,7 +25,7 @@ constexpr double fs = 44100.0;
 // coarseness 1: h = 2.98 mm, finer than the air (13.47 mm at 44.1 kHz); 5: h = 14.9 mm, coarser
 MembraneSpec losslessBatter(double coarseness = 1.0)
 {
-    MembraneSpec s; // R = 0.1778 m, rho = 0.353 kg/m^2
+    MembraneSpec s;             // R = 0.1778 m, rho = 0.353 kg/m^2
     s.tension_N_per_m = 3050.0; // (0,1) at 200 Hz in vacuum
     s.sigma0_per_s = 0.0;
     s.sigma1_m2_per_s = 0.0;
@@ -66,10 +66,11 @@ TEST_CASE("the embedding's J conserves volume and links the head's nodes to the 
         Membrane head(losslessBatter(coarseness), k);
         HeadEmbedding embed(air, head, 0.0);
         const CircularGrid& g = head.grid();
-        snaresim::test::reportf("embedding: head h = %.2f mm (%d nodes), air h = %.2f mm: %d air nodes over the head, %d groups, J reaches %d "
-                    "head nodes; volume the air sees / the head's %.15f\n",
-                    1e3 * g.spacing(), g.numInterior(), 1e3 * air.spacing(), embed.airNodes(), embed.groups(), embed.headNodes(),
-                    embed.volumeRatio());
+        snaresim::test::reportf(
+            "embedding: head h = %.2f mm (%d nodes), air h = %.2f mm: %d air nodes over the head, %d groups, J reaches %d "
+            "head nodes; volume the air sees / the head's %.15f\n",
+            1e3 * g.spacing(), g.numInterior(), 1e3 * air.spacing(), embed.airNodes(), embed.groups(), embed.headNodes(),
+            embed.volumeRatio());
         CHECK(embed.airCoarser() == (air.spacing() >= g.spacing()));
         CHECK(embed.volumeRatio() == Approx(1.0).margin(1e-12));
         if (embed.airCoarser())
@@ -79,7 +80,7 @@ TEST_CASE("the embedding's J conserves volume and links the head's nodes to the 
         }
         else
         {
-            CHECK(embed.headNodes() == embed.groups()); // one head node a group
+            CHECK(embed.headNodes() == embed.groups());       // one head node a group
             CHECK(embed.headNodes() > 0.9 * g.numInterior()); // all but nodes at the rim
         }
         // the head's response to a force: the diagonal of (1 + gamma J^T J)^{-1}, below 1 where J reaches
@@ -103,9 +104,9 @@ TEST_CASE("a head embedded in lossless air conserves the total energy to round-o
     AirBox air(losslessBox(), k);
     Membrane head(losslessBatter(coarseness), k);
     HeadEmbedding embed(air, head, 0.0);
-    snaresim::test::reportf("embedding: head h = %.3f mm (%d nodes), air h = %.3f mm (%ld points); %d air nodes over the head, J reaches %d head nodes\n",
-                1e3 * head.grid().spacing(), head.grid().numInterior(), 1e3 * air.spacing(), air.numPoints(), embed.airNodes(),
-                embed.headNodes());
+    snaresim::test::reportf(
+        "embedding: head h = %.3f mm (%d nodes), air h = %.3f mm (%ld points); %d air nodes over the head, J reaches %d head nodes\n",
+        1e3 * head.grid().spacing(), head.grid().numInterior(), 1e3 * air.spacing(), air.numPoints(), embed.airNodes(), embed.headNodes());
     REQUIRE(embed.airNodes() > 500);
     pluck01(head);
 
@@ -124,8 +125,9 @@ TEST_CASE("a head embedded in lossless air conserves the total energy to round-o
         air.advance();
         head.advance();
     }
-    snaresim::test::reportf("embedded head (h = %.2f mm), lossless: total energy relative variation %.3g over %d steps; the air held up to %.3g of it\n",
-                1e3 * head.grid().spacing(), drift, steps, airMax);
+    snaresim::test::reportf(
+        "embedded head (h = %.2f mm), lossless: total energy relative variation %.3g over %d steps; the air held up to %.3g of it\n",
+        1e3 * head.grid().spacing(), drift, steps, airMax);
     CHECK(drift < 1e-11);
     CHECK(airMax > 0.05); // the coupling really moved energy into the air
     CHECK(head.isFinite());
@@ -171,9 +173,10 @@ TEST_CASE("the air's mass lowers the head's (0,1) mode", "[airbox][embedding][sl
     }
     const double f0 = peakFrequency(vacuum, 100.0, 300.0);
     const double fr = peakFrequency(inAir[0], 60.0, 300.0), fa = peakFrequency(inAir[1], 60.0, 300.0);
-    snaresim::test::reportf("(0,1) mode of the batter (T = 3050 N/m): %.1f Hz in vacuum, %.1f Hz in a 0.6 m box of air with reflecting walls, "
-                "%.1f Hz with absorbing walls\n",
-                f0, fr, fa);
+    snaresim::test::reportf(
+        "(0,1) mode of the batter (T = 3050 N/m): %.1f Hz in vacuum, %.1f Hz in a 0.6 m box of air with reflecting walls, "
+        "%.1f Hz with absorbing walls\n",
+        f0, fr, fa);
     CHECK(f0 == Approx(200.0).epsilon(0.01));
     CHECK(fr < 0.95 * f0);
     CHECK(fa < 0.95 * f0);
@@ -198,10 +201,11 @@ TEST_CASE("the air's mass lowers the head's (0,1) mode", "[airbox][embedding][sl
     const double fOne = f0 / std::sqrt(1.0 + one / modal), fTwo = f0 / std::sqrt(1.0 + 2.0 * one / modal);
     // Decay: with reflecting walls nothing leaves the box; absorbing walls take what the head radiates.
     const double rr = test::bandDecay_dB_per_s(inAir[0], fs, fr), ra = test::bandDecay_dB_per_s(inAir[1], fs, fa);
-    snaresim::test::reportf("(0,1) mode: drop %.1f %% (reflecting) and %.1f %% (absorbing); a baffled head with air on one side %.1f Hz (%.1f %%), "
-                "on both %.1f Hz (%.1f %%); decay %.3f dB/s (reflecting), %.1f dB/s (absorbing, T60 %.2f s)\n",
-                100.0 * (1.0 - fr / f0), 100.0 * (1.0 - fa / f0), fOne, 100.0 * (1.0 - fOne / f0), fTwo, 100.0 * (1.0 - fTwo / f0), rr, ra,
-                60.0 / ra);
+    snaresim::test::reportf(
+        "(0,1) mode: drop %.1f %% (reflecting) and %.1f %% (absorbing); a baffled head with air on one side %.1f Hz (%.1f %%), "
+        "on both %.1f Hz (%.1f %%); decay %.3f dB/s (reflecting), %.1f dB/s (absorbing, T60 %.2f s)\n",
+        100.0 * (1.0 - fr / f0), 100.0 * (1.0 - fa / f0), fOne, 100.0 * (1.0 - fOne / f0), fTwo, 100.0 * (1.0 - fTwo / f0), rr, ra,
+        60.0 / ra);
     for (double f : { fr, fa })
     {
         CHECK(f < fOne);
@@ -249,8 +253,9 @@ TEST_CASE("a force on a head coarser than the air is solved with the air in one 
             second = embed.correct() / embed.scale();
         }
         embed.finish();
-        snaresim::test::reportf("a 2 N force at four nodes, head h = %.2f mm: mismatch after the first trial %.3g of max |w|, after the second %.3g\n",
-                    1e3 * head.grid().spacing(), first, second);
+        snaresim::test::reportf(
+            "a 2 N force at four nodes, head h = %.2f mm: mismatch after the first trial %.3g of max |w|, after the second %.3g\n",
+            1e3 * head.grid().spacing(), first, second);
         if (! embed.airCoarser())
             CHECK(first <= 1e-15);
         else

@@ -5,8 +5,8 @@
 #include "Parameters.h"
 #include "TestDrums.h"
 
-#include <unsupported/Eigen/FFT>
 #include <catch2/catch.hpp>
+#include <unsupported/Eigen/FFT>
 
 #include <algorithm>
 #include <cmath>
@@ -63,8 +63,8 @@ double dBBelow(const std::vector<double>& reference, const std::vector<double>& 
 // The features scripts/snare_features.py reports for a strike that starts at sample 0.
 struct Features
 {
-    double centroid_Hz = 0.0;     // power spectrum of 50-300 ms, Hann window
-    double bands[4] = {};         // shares of 0-300 ms in < 1, 1-2, 2-5, > 5 kHz
+    double centroid_Hz = 0.0;                // power spectrum of 50-300 ms, Hann window
+    double bands[4] = {};                    // shares of 0-300 ms in < 1, 1-2, 2-5, > 5 kHz
     double fall20_ms = 0.0, fall40_ms = 0.0; // the 10 ms RMS envelope stays this far below its peak after
 };
 
@@ -89,7 +89,7 @@ Features features(const std::vector<double>& x, double fs)
         f.centroid_Hz = num / den;
     }
     {
-        std::vector<double> seg(x.begin(), x.begin() + (std::ptrdiff_t) (0.3 * fs));
+        std::vector<double> seg(x.begin(), x.begin() + (std::ptrdiff_t)(0.3 * fs));
         fft.fwd(X, seg);
         const double edges[] = { 0.0, 1000.0, 2000.0, 5000.0, 1e9 };
         double total = 0.0;
@@ -164,8 +164,8 @@ bool close(const Features& a, const Features& b)
 std::string describe(const Features& f)
 {
     std::ostringstream s;
-    s << "centroid " << f.centroid_Hz << " Hz, bands " << f.bands[0] << " " << f.bands[1] << " " << f.bands[2] << " "
-      << f.bands[3] << ", falls " << f.fall20_ms << " / " << f.fall40_ms << " ms";
+    s << "centroid " << f.centroid_Hz << " Hz, bands " << f.bands[0] << " " << f.bands[1] << " " << f.bands[2] << " " << f.bands[3]
+      << ", falls " << f.fall20_ms << " / " << f.fall40_ms << " ms";
     return s.str();
 }
 } // namespace
@@ -246,7 +246,7 @@ TEST_CASE("the air box keeps its heads in double precision", "[precision][airbox
     p.set(ParamId::airModel, (double) AirModel::airbox);
     DrumConfig asked = makeDrumConfig(p, 48000.0);
     CHECK(asked.batter.precision == HeadPrecision::single_precision); // the parameter as set
-    asked.airBox.size_m = { 0.0, 0.0, 0.0 }; // the drum plus its margins: quick to build
+    asked.airBox.size_m = { 0.0, 0.0, 0.0 };                          // the drum plus its margins: quick to build
     const Drum drum(asked);
     CHECK_FALSE(drum.batter().singlePrecision());
     CHECK_FALSE(drum.carry().singlePrecision());

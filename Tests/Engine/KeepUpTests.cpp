@@ -9,8 +9,8 @@
 
 #include <atomic>
 #include <chrono>
-#include <functional>
 #include <cmath>
+#include <functional>
 #include <thread>
 
 using namespace snaresim;
@@ -84,7 +84,7 @@ TEST_CASE("the keep-up check measures in the background and remembers what it me
     auto airbox = fastDrum();
     airbox.set(ParamId::airModel, (double) AirModel::airbox);
 
-    CHECK(check.ask(airbox, 0.0, 256).state == KeepUpCheck::State::none);     // no rate: nothing asked
+    CHECK(check.ask(airbox, 0.0, 256).state == KeepUpCheck::State::none); // no rate: nothing asked
     CHECK(check.latest().state == KeepUpCheck::State::none);
 
     const auto asked = std::chrono::steady_clock::now();

@@ -32,8 +32,7 @@ TEST_CASE("the mallet rebounds after a physically sensible contact", "[mallet]")
             vOut = (m.zNow - m.zPrev) / k;
     }
     const double contactTime = contactSteps * k;
-    INFO("contact " << contactTime * 1e3 << " ms, peak compression " << peakCompression * 1e3 << " mm, rebound "
-                    << vOut << " m/s");
+    INFO("contact " << contactTime * 1e3 << " ms, peak compression " << peakCompression * 1e3 << " mm, rebound " << vOut << " m/s");
 
     // Expected ranges, from two limits:
     // - rigid barrier (kappa = 1e8, alpha = 1.5, M = 0.028 kg, 5 m/s): peak compression

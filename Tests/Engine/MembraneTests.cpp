@@ -152,8 +152,8 @@ TEST_CASE("the product's grids keep the low batter modes at the Bessel frequenci
     for (int i = 0; i < 6; ++i)
     {
         const double ideal = zeros[i] / zeros[0] * f01;
-        INFO("Quality " << quality << (precision > 0.5 ? ", single" : ", double") << ", h " << drum.batter().grid().spacing() * 1e3 << " mm, mode " << i << ": "
-                        << modes[(size_t) i] << " Hz vs " << ideal << " Hz");
+        INFO("Quality " << quality << (precision > 0.5 ? ", single" : ", double") << ", h " << drum.batter().grid().spacing() * 1e3
+                        << " mm, mode " << i << ": " << modes[(size_t) i] << " Hz vs " << ideal << " Hz");
         CHECK(modes[(size_t) i] == Approx(ideal).epsilon(0.005));
     }
 }

@@ -64,7 +64,8 @@ TEST_CASE("near field: each channel puts rho_a (1 + coth kH) / k on its mode, it
             const double k = s.zero / head.radius_m, rhoA = cfg.cavity.airDensity_kg_per_m3;
             const double mu = rhoA * (1.0 + 1.0 / std::tanh(k * cfg.cavity.shellDepth_m)) / k;
             CHECK(air.arealMass(i) == Approx(mu).epsilon(1e-12));
-            const double loaded = k * std::sqrt(head.tension_N_per_m / head.density_kg_per_m2) / std::sqrt(1.0 + mu / head.density_kg_per_m2);
+            const double loaded =
+                k * std::sqrt(head.tension_N_per_m / head.density_kg_per_m2) / std::sqrt(1.0 + mu / head.density_kg_per_m2);
             CHECK(air.modeFrequency_Hz(i) == Approx(loaded / (2.0 * M_PI)).epsilon(1e-12));
             // a mass at its mode: the compliance's corner well above it (docs/MODEL.md: 1.7-6.5 times)
             INFO("(" << s.m << "," << s.n << ") on head " << s.head << " at " << rate << " Hz");
@@ -89,9 +90,9 @@ TEST_CASE("near field: the (0,n) and (1,n) shapes leave the channels' coordinate
             for (double x = -R; x <= R; x += h)
             {
                 const double v = NearFieldAir::shapeValue(s, R, x, y);
-                const double r = std::hypot(x, y), low = r < R ? std::cyl_bessel_j((double) s.m, lowest.zero * r / R)
-                                                                   * (s.m == 0 ? 1.0 : (s.sine ? y : x) / r)
-                                                             : 0.0;
+                const double r = std::hypot(x, y),
+                             low = r < R ? std::cyl_bessel_j((double) s.m, lowest.zero * r / R) * (s.m == 0 ? 1.0 : (s.sine ? y : x) / r)
+                                         : 0.0;
                 norm += v * v;
                 sum += v;
                 moment += v * (s.sine ? y : x) / R;
@@ -163,7 +164,9 @@ TEST_CASE("near field: its dampers barely touch the heads' modes below the chann
     // dampers add to their decay. The compliance hardly moves at a mode below its channel's
     // corner; measured 0.8-3.4 dB/s, where the heads' own damping is 15 dB/s at its least
     // (damping 0 %, T60 4 s) and 175 dB/s by default.
-    const std::vector<test::BatterMode> modes { { 2, 5.13562, "(2,1)" }, { 3, 6.38016, "(3,1)" }, { 4, 7.58834, "(4,1)" }, { 2, 8.41724, "(2,2)" } };
+    const std::vector<test::BatterMode> modes {
+        { 2, 5.13562, "(2,1)" }, { 3, 6.38016, "(3,1)" }, { 4, 7.58834, "(4,1)" }, { 2, 8.41724, "(2,2)" }
+    };
     DrumConfig cfg = withNearField(test::wholeDrum()).lossless();
     cfg.snares.engaged = false;
     DrumConfig damped = cfg;

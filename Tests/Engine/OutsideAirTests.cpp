@@ -86,17 +86,16 @@ TEST_CASE("outside air: the drum's lowest modes match the air box's within 2 % i
 
     const auto compare = [&](const DrumConfig& model, bool shouldMatch) {
         const test::LowModes m = test::lowModes(model, 1 << 14, { 0.0, air.antiPhase.frequency_Hz });
-        const test::Mode pairs[4][2] = { { m.inPhase, air.inPhase },
-                                         { m.antiPhase, air.antiPhase },
-                                         { m.batter11, air.batter11 },
-                                         { m.carry11, air.carry11 } };
+        const test::Mode pairs[4][2] = {
+            { m.inPhase, air.inPhase }, { m.antiPhase, air.antiPhase }, { m.batter11, air.batter11 }, { m.carry11, air.carry11 }
+        };
         bool all = true;
         for (const auto& p : pairs)
         {
             INFO("model " << p[0].frequency_Hz << " Hz, " << p[0].decay_dB_per_s << " dB/s; air box " << p[1].frequency_Hz << " Hz, "
                           << p[1].decay_dB_per_s << " dB/s");
-            const bool match = p[1].frequency_Hz > 0.0 && std::abs(p[0].frequency_Hz / p[1].frequency_Hz - 1.0) < 0.02
-                            && std::abs(p[0].decay_dB_per_s / p[1].decay_dB_per_s - 1.0) < 0.25;
+            const bool match = p[1].frequency_Hz > 0.0 && std::abs(p[0].frequency_Hz / p[1].frequency_Hz - 1.0) < 0.02 &&
+                               std::abs(p[0].decay_dB_per_s / p[1].decay_dB_per_s - 1.0) < 0.25;
             if (shouldMatch)
                 CHECK(match);
             all = all && match;

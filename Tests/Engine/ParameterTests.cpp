@@ -168,9 +168,15 @@ struct GridShape
 
 GridShape shapeOf(const Drum& d)
 {
-    return { d.batter().grid().numInterior(), d.carry().grid().numInterior(), d.snareWires().intervals(),
-             d.snareContact().numPoints(), d.config().snares.scheme, d.config().cavity.model,
-             d.airBox().active() ? d.airBox().air().spacing() : 0.0, d.batter().singlePrecision(), d.outsideAir().active(),
+    return { d.batter().grid().numInterior(),
+             d.carry().grid().numInterior(),
+             d.snareWires().intervals(),
+             d.snareContact().numPoints(),
+             d.config().snares.scheme,
+             d.config().cavity.model,
+             d.airBox().active() ? d.airBox().air().spacing() : 0.0,
+             d.batter().singlePrecision(),
+             d.outsideAir().active(),
              d.nearFieldAir().active() };
 }
 } // namespace
@@ -221,12 +227,11 @@ TEST_CASE("a change the schema says rebuilds the model changes the grids or the 
                 moved.set(ParamId::airModel, air);
             const GridShape a = shapeOf(Drum { makeDrumConfig(base, 48000.0) });
             const GridShape b = shapeOf(Drum { makeDrumConfig(moved, 48000.0) });
-            const bool gridsDiffer = a.batterNodes != b.batterNodes || a.carryNodes != b.carryNodes
-                                  || a.wireIntervals != b.wireIntervals || a.contactPoints != b.contactPoints
-                                  || a.airSpacing != b.airSpacing;
+            const bool gridsDiffer = a.batterNodes != b.batterNodes || a.carryNodes != b.carryNodes || a.wireIntervals != b.wireIntervals ||
+                                     a.contactPoints != b.contactPoints || a.airSpacing != b.airSpacing;
             changed = s.needs == ChangeNeeds::newGrid ? gridsDiffer
-                                                      : (a.scheme != b.scheme || a.air != b.air || a.singleHeads != b.singleHeads
-                                                         || a.outsideAir != b.outsideAir || a.nearField != b.nearField);
+                                                      : (a.scheme != b.scheme || a.air != b.air || a.singleHeads != b.singleHeads ||
+                                                         a.outsideAir != b.outsideAir || a.nearField != b.nearField);
             if (changed)
                 break;
         }

@@ -114,13 +114,13 @@ TEST_CASE("Quality is the highest frequency the heads' and wires' grids carry, i
         const Drum drum(cfg);
         const double k = 1.0 / 48000.0;
         auto top = [&](double sine) { return std::asin(std::min(1.0, sine)) / (std::numbers::pi * k); };
-        const double batter = top(std::sqrt(2.0) * k * std::sqrt(cfg.batter.gridTension_N_per_m / cfg.batter.density_kg_per_m2)
-                                  / drum.batter().grid().spacing());
-        const double carry = top(std::sqrt(2.0) * k * std::sqrt(cfg.carry.gridTension_N_per_m / cfg.carry.density_kg_per_m2)
-                                 / drum.carry().grid().spacing());
+        const double batter = top(std::sqrt(2.0) * k * std::sqrt(cfg.batter.gridTension_N_per_m / cfg.batter.density_kg_per_m2) /
+                                  drum.batter().grid().spacing());
+        const double carry = top(std::sqrt(2.0) * k * std::sqrt(cfg.carry.gridTension_N_per_m / cfg.carry.density_kg_per_m2) /
+                                 drum.carry().grid().spacing());
         // the wires' grid is whole intervals of the wire: at most the spacing asked
-        const double wires = top(k * std::sqrt(cfg.snares.gridTension_N / cfg.snares.linearDensity_kg_per_m)
-                                 / SnareWires::gridSpacing(cfg.snares, k));
+        const double wires =
+            top(k * std::sqrt(cfg.snares.gridTension_N / cfg.snares.linearDensity_kg_per_m) / SnareWires::gridSpacing(cfg.snares, k));
         const double carried = std::min({ batter, carry, wires });
         INFO("asked " << asked << " Hz: batter " << batter << ", carry " << carry << ", wires " << wires);
         // what the finest stable grids carry caps it; the coarseness is taken to a millionth
@@ -156,7 +156,7 @@ TEST_CASE("Quality's old coarseness and its bandwidth give the same grids", "[pa
     CHECK(gridCoarsenessFor(spec(ParamId::bandwidth).maxValue) == 1.0);
     CHECK(gridCoarsenessFor(std::nan("")) == 1.0);
     CHECK(! migrateParameter(3, "grid_coarseness", 2.0)); // today's states have no such key
-    CHECK(! readOldKey("bandwidth", "7000"));              // today's key is not an old one
+    CHECK(! readOldKey("bandwidth", "7000"));             // today's key is not an old one
     CHECK(! readOldKey("no_such_key", "1"));
     CHECK_THROWS_AS(readOldKey("grid_coarseness", "fine"), std::invalid_argument);
 }

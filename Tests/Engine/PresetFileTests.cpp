@@ -31,8 +31,8 @@ double randomValue(const ParameterSpec& s, std::mt19937_64& rng)
 {
     std::uniform_real_distribution<double> u(0.0, 1.0);
     const double t = u(rng);
-    double v = s.scale == ParamScale::logarithmic ? s.minValue * std::pow(s.maxValue / s.minValue, t)
-                                                  : s.minValue + t * (s.maxValue - s.minValue);
+    double v =
+        s.scale == ParamScale::logarithmic ? s.minValue * std::pow(s.maxValue / s.minValue, t) : s.minValue + t * (s.maxValue - s.minValue);
     if (s.kind != ParamKind::continuous)
         v = std::round(v);
     return std::clamp(v, s.minValue, s.maxValue);
@@ -70,8 +70,7 @@ TEST_CASE("preset files: an older schema's key migrates as a saved state's does"
     CHECK(params.get(ParamId::bandwidth) == qualityBandwidth_Hz(3.0));
     CHECK(gridCoarsenessFor(params.get(ParamId::bandwidth)) == 3.0);
     // below the old range (1 to 4): its finest grids
-    CHECK(parametersOf(parsePresetFile("name = Old\ngrid_coarseness = 0.5\n")).get(ParamId::bandwidth)
-          == qualityBandwidth_Hz(1.0));
+    CHECK(parametersOf(parsePresetFile("name = Old\ngrid_coarseness = 0.5\n")).get(ParamId::bandwidth) == qualityBandwidth_Hz(1.0));
     CHECK_THROWS_AS(parsePresetFile("name = Old\ngrid_coarseness = 3\nbandwidth = 5000 Hz\n"), PresetFileError); // twice
 }
 
@@ -137,8 +136,8 @@ TEST_CASE("factory presets: read from their files, in program order, each differ
 {
     const auto presets = factoryPresets();
     REQUIRE(presets.size() == 10);
-    const char* names[] = { "Studio Default", "Tight Funk", "Fat Rock", "Piccolo", "Snares Off",
-                            "Loose Vintage", "Muffled Dry", "Marching", "Soft Mallet", "Open Air" };
+    const char* names[] = { "Studio Default", "Tight Funk",  "Fat Rock", "Piccolo",     "Snares Off",
+                            "Loose Vintage",  "Muffled Dry", "Marching", "Soft Mallet", "Open Air" };
     std::set<std::string> texts;
     for (size_t i = 0; i < presets.size(); ++i)
     {

@@ -1,14 +1,15 @@
 // The pressure microphones (PressureMicrophones.h) against the air box's pressure at the same
 // points: octave-band levels of the first 300 ms after a strike.
-#include "Report.h"
 #include "MicBands.h"
+#include "Report.h"
 
 #include <catch2/catch.hpp>
 
 using namespace snaresim;
 using namespace snaresim::test;
 
-TEST_CASE("pressure microphones: octave bands 125 Hz - 4 kHz within 3 dB of the air box's pressure, and the whole real-time drum to 500 Hz", "[mics][airbox][slow]")
+TEST_CASE("pressure microphones: octave bands 125 Hz - 4 kHz within 3 dB of the air box's pressure, and the whole real-time drum to 500 Hz",
+          "[mics][airbox][slow]")
 {
     // The same heads' motion heard two ways: the air box's own pressure at the microphones and
     // the radiation model on the box's heads. The box's heads stand in for the real-time ones
@@ -35,8 +36,7 @@ TEST_CASE("pressure microphones: octave bands 125 Hz - 4 kHz within 3 dB of the 
     // Within 3 dB up to 500 Hz (above, the box's inside air carries sound the reduced cavity
     // does not: docs/MODEL.md, "The real-time drum as a whole")
     CHECK(worstDifference("the real-time drum (cavity, outside air, near field), the box on its grids", rt.drum, boxOnGrids.drum, fs, 500.0,
-                          reportFile())
-          < 3.0);
+                          reportFile()) < 3.0);
     // Reported: without the near field the batter's (2,1) mode stands 14 % high, out of the
     // 500 Hz band; how far that band then lies from the box's depends on the strike's chatter:
     // 4.1 dB at the room mic on these grids, 4.5 dB on the channels' own.

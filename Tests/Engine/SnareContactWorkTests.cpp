@@ -29,8 +29,7 @@ bool strikesAt(long n, int& velocity)
 }
 } // namespace
 
-TEST_CASE("snare contact: solving where the points touch gives every point's solve bit for bit, in less work",
-          "[drum][snares][work]")
+TEST_CASE("snare contact: solving where the points touch gives every point's solve bit for bit, in less work", "[drum][snares][work]")
 {
     DrumConfig cfg = makeDrumConfig(ParameterSet {}, 48000.0);
     const double exponent = GENERATE(1.5, 1.25); // the Hertz kernel, and the general power law
@@ -66,9 +65,9 @@ TEST_CASE("snare contact: solving where the points touch gives every point's sol
         ++steps;
     }
     const double meanShare = (double) solved / ((double) steps * points);
-    INFO("exponent " << exponent << ": " << points << " points; solved per step: mean " << meanShare * points << " ("
-                     << 100.0 * meanShare << " %), most " << mostSolved << "; steps with a point touching " << touchingSteps
-                     << " of " << steps << "; steps differing from every point's solve " << differing);
+    INFO("exponent " << exponent << ": " << points << " points; solved per step: mean " << meanShare * points << " (" << 100.0 * meanShare
+                     << " %), most " << mostSolved << "; steps with a point touching " << touchingSteps << " of " << steps
+                     << "; steps differing from every point's solve " << differing);
     CHECK(differing == 0);
     CHECK(overBound == 0);
     CHECK(touchingSteps > steps / 2); // the wires do touch and leave the head through the roll

@@ -114,7 +114,7 @@ TEST_CASE("the step profile's phases are never negative and add up to no more th
     CHECK(p[StepPhase::energy] > 0.0);
     CHECK(p[StepPhase::batterFree] > 0.0);
     snaresim::test::reportf("step profile, %s: phases %.4g s of %.4g s around the steps (%.1f%%)\n", airBox ? "air box" : "cavity",
-                p.total(), wall, 100.0 * p.total() / wall);
+                            p.total(), wall, 100.0 * p.total() / wall);
 
     // Off: the profile stays as it was; reset: empty, the path kept.
     const StepProfile before = p;

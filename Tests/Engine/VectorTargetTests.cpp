@@ -44,7 +44,4 @@ TEST_CASE("the vector target is the one asked for where the processor has it, el
     }
 }
 
-TEST_CASE("the vector target in force is one this processor runs", "[vector]")
-{
-    CHECK(vectorTarget() <= widestVectorTarget());
-}
+TEST_CASE("the vector target in force is one this processor runs", "[vector]") { CHECK(vectorTarget() <= widestVectorTarget()); }

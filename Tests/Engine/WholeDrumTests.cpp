@@ -52,8 +52,8 @@ TEST_CASE("lossless whole drum conserves energy to round-off (20 snares, cavity)
     cfg.snares.scheme = schemeOf(GENERATE(0, 1));
     SolverStats stats;
     const Drift drift = losslessDrift(cfg, 5.0, 44100, stats);
-    INFO(nameOf(cfg.snares.scheme) << ": relative energy variation " << drift.relative << ", max Newton iterations "
-                                   << stats.maxIterations << ", removed by psi resets " << drift.corrected);
+    INFO(nameOf(cfg.snares.scheme) << ": relative energy variation " << drift.relative << ", max Newton iterations " << stats.maxIterations
+                                   << ", removed by psi resets " << drift.corrected);
     CHECK(drift.relative < 1e-11);
     CHECK(stats.fallbacks == 0);
     if (cfg.snares.scheme == CollisionScheme::newton)
@@ -106,9 +106,9 @@ TEST_CASE("with losses the whole drum's energy never rises and energy + losses i
     // strike left, sigma0 the smallest of the components'.
     const double sigma0 = std::min({ cfg.batter.sigma0_per_s, cfg.carry.sigma0_per_s, cfg.snares.sigma0_per_s });
     const double bound = std::exp(-2.0 * sigma0 * (steps - 1 - keptAt) / cfg.sampleRate_Hz);
-    INFO(nameOf(cfg.snares.scheme) << ": largest rise " << worstRise << ", balance drift " << worstBalance << "; kept "
-                                   << kept << " J at step " << keptAt << ", " << end << " J at the end (bound "
-                                   << bound * kept << " J), dissipated " << drum.energy().dissipated_J << " J");
+    INFO(nameOf(cfg.snares.scheme) << ": largest rise " << worstRise << ", balance drift " << worstBalance << "; kept " << kept
+                                   << " J at step " << keptAt << ", " << end << " J at the end (bound " << bound * kept
+                                   << " J), dissipated " << drum.energy().dissipated_J << " J");
     CHECK(worstRise <= 1e-15);
     CHECK(worstBalance < 1e-10);
     REQUIRE(kept > 0.0);
@@ -147,8 +147,8 @@ TEST_CASE("snares lose contact and strike the head again, with small penetration
     }
     const double hc = drum.carry().grid().spacing();
     const double penetration = drum.solverStats().maxSnarePenetration_m;
-    INFO(nameOf(cfg.snares.scheme) << ": " << restrikes << " of " << points << " points struck again; largest penetration " << penetration * 1e3 << " mm, h_c "
-                   << hc * 1e3 << " mm");
+    INFO(nameOf(cfg.snares.scheme) << ": " << restrikes << " of " << points << " points struck again; largest penetration "
+                                   << penetration * 1e3 << " mm, h_c " << hc * 1e3 << " mm");
     CHECK(restrikes > points / 4);
     CHECK(penetration > 0.0);
     CHECK(penetration < 0.01 * hc);
@@ -319,8 +319,8 @@ ModePair modalEstimate(const DrumConfig& cfg, double depth)
 TEST_CASE("the cavity couples the heads: the lowest mode splits into an in-phase and an anti-phase pair", "[drum][cavity]")
 {
     const DrumConfig cfg = test::wholeDrum();
-    const double f01b = 2.404825557695773 * std::sqrt(cfg.batter.tension_N_per_m / cfg.batter.density_kg_per_m2)
-                      / (2.0 * std::numbers::pi * cfg.batter.radius_m);
+    const double f01b = 2.404825557695773 * std::sqrt(cfg.batter.tension_N_per_m / cfg.batter.density_kg_per_m2) /
+                        (2.0 * std::numbers::pi * cfg.batter.radius_m);
 
     const ModePair none = measuredPairs(AirModel::none, 0.14, { f01b, 0.0 });
     INFO("no air: in-phase " << none.inPhase << " Hz, anti-phase " << none.antiPhase << " Hz");
@@ -330,10 +330,10 @@ TEST_CASE("the cavity couples the heads: the lowest mode splits into an in-phase
     const ModePair deepEstimate = modalEstimate(cfg, 0.14), shallowEstimate = modalEstimate(cfg, 0.07);
     const ModePair deep = measuredPairs(AirModel::cavity, 0.14, deepEstimate);
     const ModePair shallow = measuredPairs(AirModel::cavity, 0.07, shallowEstimate);
-    INFO("14 cm shell: " << deep.inPhase << " / " << deep.antiPhase << " Hz (modal estimate " << deepEstimate.inPhase
-                         << " / " << deepEstimate.antiPhase << ")");
-    INFO("7 cm shell: " << shallow.inPhase << " / " << shallow.antiPhase << " Hz (estimate " << shallowEstimate.inPhase
-                        << " / " << shallowEstimate.antiPhase << ")");
+    INFO("14 cm shell: " << deep.inPhase << " / " << deep.antiPhase << " Hz (modal estimate " << deepEstimate.inPhase << " / "
+                         << deepEstimate.antiPhase << ")");
+    INFO("7 cm shell: " << shallow.inPhase << " / " << shallow.antiPhase << " Hz (estimate " << shallowEstimate.inPhase << " / "
+                        << shallowEstimate.antiPhase << ")");
     CHECK(deep.inPhase == Approx(deepEstimate.inPhase).epsilon(0.02));
     CHECK(deep.antiPhase == Approx(deepEstimate.antiPhase).epsilon(0.02));
     CHECK(shallow.inPhase == Approx(shallowEstimate.inPhase).epsilon(0.02));

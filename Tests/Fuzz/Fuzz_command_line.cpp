@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-extern "C" int LLVMFuzzerTestOneInput (const std::uint8_t* data, std::size_t size)
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {
     std::vector<std::string> args;
     std::string current;
@@ -18,20 +18,20 @@ extern "C" int LLVMFuzzerTestOneInput (const std::uint8_t* data, std::size_t siz
     {
         if (data[i] == 0)
         {
-            args.push_back (current);
+            args.push_back(current);
             current.clear();
         }
         else
-            current.push_back ((char) data[i]);
+            current.push_back((char) data[i]);
     }
     if (! current.empty())
-        args.push_back (current);
+        args.push_back(current);
 
     try
     {
-        const auto command = snaresim::render::parseCommandLine (args);
+        const auto command = snaresim::render::parseCommandLine(args);
         if (command.action == snaresim::render::CommandLine::Action::render)
-            (void) snaresim::render::makeParameters (command.job);
+            (void) snaresim::render::makeParameters(command.job);
     }
     catch (const snaresim::render::UserError&)
     {

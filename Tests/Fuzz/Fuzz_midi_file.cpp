@@ -8,11 +8,11 @@
 #include <cstdint>
 #include <cstdlib>
 
-extern "C" int LLVMFuzzerTestOneInput (const std::uint8_t* data, std::size_t size)
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {
     try
     {
-        const auto strikes = snaresim::render::readMidiStrikes (data, size, "'fuzz.mid'");
+        const auto strikes = snaresim::render::readMidiStrikes(data, size, "'fuzz.mid'");
         double previous = 0.0;
         for (const auto& s : strikes)
         {
@@ -22,7 +22,6 @@ extern "C" int LLVMFuzzerTestOneInput (const std::uint8_t* data, std::size_t siz
         }
     }
     catch (const snaresim::render::UserError&)
-    {
-    }
+    {}
     return 0;
 }

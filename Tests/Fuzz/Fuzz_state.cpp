@@ -11,42 +11,41 @@ namespace
 {
 SnareSimAudioProcessor& processor()
 {
-    static auto* proc = []
-    {
-        juce::initialiseJuce_GUI();     // for the life of the process: nothing is shut down at exit
+    static auto* proc = [] {
+        juce::initialiseJuce_GUI(); // for the life of the process: nothing is shut down at exit
         auto* p = new SnareSimAudioProcessor();
-        p->setRateAndBufferSizeDetails (48000.0, 64);
-        p->prepareToPlay (48000.0, 64);
+        p->setRateAndBufferSizeDetails(48000.0, 64);
+        p->prepareToPlay(48000.0, 64);
         return p;
     }();
     return *proc;
 }
 } // namespace
 
-extern "C" int LLVMFuzzerTestOneInput (const std::uint8_t* data, std::size_t size)
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {
     auto& proc = processor();
-    proc.setStateInformation (data, (int) size);
+    proc.setStateInformation(data, (int) size);
 
     const auto values = proc.currentParameters();
     for (const auto& spec : snaresim::parameterSpecs())
     {
-        const double v = values.get (spec.id);
-        if (! std::isfinite (v) || v < spec.minValue || v > spec.maxValue)
+        const double v = values.get(spec.id);
+        if (! std::isfinite(v) || v < spec.minValue || v > spec.maxValue)
             std::abort();
     }
 
     juce::MemoryBlock saved;
-    proc.getStateInformation (saved);
-    proc.setStateInformation (saved.getData(), (int) saved.getSize());
+    proc.getStateInformation(saved);
+    proc.setStateInformation(saved.getData(), (int) saved.getSize());
 
-    juce::AudioBuffer<float> buffer (2, 64);
+    juce::AudioBuffer<float> buffer(2, 64);
     juce::MidiBuffer midi;
-    midi.addEvent (juce::MidiMessage::noteOn (10, 38, (juce::uint8) 127), 0);
+    midi.addEvent(juce::MidiMessage::noteOn(10, 38, (juce::uint8) 127), 0);
     buffer.clear();
-    proc.processBlock (buffer, midi);
+    proc.processBlock(buffer, midi);
     for (int i = 0; i < 64; ++i)
-        if (! std::isfinite (buffer.getSample (0, i)))
+        if (! std::isfinite(buffer.getSample(0, i)))
             std::abort();
     return 0;
 }

@@ -11,12 +11,12 @@
 
 #include <catch2/catch.hpp>
 
-#include "Report.h"
 #include "DrumConfig.h"
+#include "GoldenSupport.h"
 #include "Parameters.h"
 #include "PluginProcessor.h"
 #include "RendererTestSupport.h"
-#include "GoldenSupport.h"
+#include "Report.h"
 #include "VectorTarget.h"
 
 #include <juce_audio_formats/juce_audio_formats.h>
@@ -49,7 +49,6 @@ void requireDeterministicPath()
     REQUIRE(tunables != nullptr);
     REQUIRE(std::string(tunables) == SNARESIM_GOLDEN_TUNABLES);
 }
-
 
 struct Golden
 {
@@ -93,8 +92,7 @@ void writeFloatWav(const fs::path& file, const std::vector<float>& samples, doub
     fs::remove(file);
     juce::WavAudioFormat format;
     std::unique_ptr<juce::OutputStream> stream = std::make_unique<juce::FileOutputStream>(juce::File(file.string()));
-    std::unique_ptr<juce::AudioFormatWriter> writer(
-        format.createWriterFor(stream.get(), sampleRate, 1, 32, {}, 0));
+    std::unique_ptr<juce::AudioFormatWriter> writer(format.createWriterFor(stream.get(), sampleRate, 1, 32, {}, 0));
     REQUIRE(writer != nullptr);
     stream.release();
     const float* channels[] = { samples.data() };
@@ -161,12 +159,9 @@ TEST_CASE("the plug-in's golden render is unchanged", "[golden]")
     proc.prepareToPlay(rate, block);
 
     const std::vector<std::pair<int, juce::MidiMessage>> notes {
-        { 0, juce::MidiMessage::noteOn(10, 38, (juce::uint8) 100) },
-        { 4800, juce::MidiMessage::noteOn(10, 40, (juce::uint8) 80) },
-        { 9630, juce::MidiMessage::noteOn(10, 37, (juce::uint8) 110) },
-        { 14400, juce::MidiMessage::noteOn(10, 38, (juce::uint8) 127) },
-        { 16000, juce::MidiMessage::noteOn(10, 38, (juce::uint8) 127) },
-        { 17601, juce::MidiMessage::noteOn(10, 38, (juce::uint8) 127) },
+        { 0, juce::MidiMessage::noteOn(10, 38, (juce::uint8) 100) },     { 4800, juce::MidiMessage::noteOn(10, 40, (juce::uint8) 80) },
+        { 9630, juce::MidiMessage::noteOn(10, 37, (juce::uint8) 110) },  { 14400, juce::MidiMessage::noteOn(10, 38, (juce::uint8) 127) },
+        { 16000, juce::MidiMessage::noteOn(10, 38, (juce::uint8) 127) }, { 17601, juce::MidiMessage::noteOn(10, 38, (juce::uint8) 127) },
     };
 
     std::vector<float> out;
@@ -245,8 +240,7 @@ TEST_CASE("a one-ulp change of one coefficient of the default drum fails the gol
     }
     SECTION("the batter's tension, by one unit of its float coefficients")
     {
-        REQUIRE(snaresim::makeDrumConfig(snaresim::ParameterSet {}, 48000.0).batter.precision
-                == snaresim::HeadPrecision::single_precision);
+        REQUIRE(snaresim::makeDrumConfig(snaresim::ParameterSet {}, 48000.0).batter.precision == snaresim::HeadPrecision::single_precision);
         const auto d = compare({ mix }, { playWith([&](snaresim::DrumConfig& c) { upFloat(c.batter.tension_N_per_m); }) });
         report("batter tension + 1 float ulp", d);
         CHECK(d.differing > 0);

@@ -22,7 +22,7 @@ struct Difference
 {
     long differing = 0;
     double maxAbs = 0.0;
-    double dbBelowSignal = INFINITY;    // of the RMS difference, relative to the reference's RMS
+    double dbBelowSignal = INFINITY; // of the RMS difference, relative to the reference's RMS
 };
 
 inline Difference compare(const std::vector<std::vector<float>>& reference, const std::vector<std::vector<float>>& now)

@@ -11,9 +11,9 @@
 // own choice of maths, as a user's machine runs it. A target the processor lacks falls back to
 // the widest it has (stated in the output), which is then the one held to the bounds.
 
-#include "Report.h"
 #include "GoldenSupport.h"
 #include "RendererTestSupport.h"
+#include "Report.h"
 #include "StrikeFeatures.h"
 
 #include <catch2/catch.hpp>
@@ -39,10 +39,7 @@ constexpr double kLinearBoundFloat_dB = 70.0;
 constexpr double kLinearBoundDouble_dB = 130.0;
 
 // A target's process: its own SNARESIM_VECTOR_TARGET, glibc's own maths.
-std::vector<std::string> environmentOf(const std::string& target)
-{
-    return { "SNARESIM_VECTOR_TARGET=" + target, "GLIBC_TUNABLES" };
-}
+std::vector<std::string> environmentOf(const std::string& target) { return { "SNARESIM_VECTOR_TARGET=" + target, "GLIBC_TUNABLES" }; }
 
 struct Render
 {
@@ -138,7 +135,7 @@ TEST_CASE("each vector target plays the drum without snares within round-off of 
         const double dbSingle = golden::compare(ref.channelSamples, single.channels).dbBelowSignal;
         const double dbDouble = golden::compare(doubleRef.channels, wide.channels).dbBelowSignal;
         snaresim::test::report() << "vector target " << target << " (ran " << single.target << "), snares off: float batter " << dbSingle
-                  << " dB below the signal, double batter " << dbDouble << " dB\n";
+                                 << " dB below the signal, double batter " << dbDouble << " dB\n";
         INFO("target " << target << " ran as " << single.target << ": " << dbSingle << " / " << dbDouble << " dB below the signal");
         CHECK(dbSingle > kLinearBoundFloat_dB);
         CHECK(dbDouble > kLinearBoundDouble_dB);

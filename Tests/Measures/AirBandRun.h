@@ -34,8 +34,8 @@ namespace snaresim::test
 struct AirBandSetup
 {
     double sampleRate_Hz = 44100.0;
-    double sigma_m = 0.0;                        // sigma_a of the run
-    double gridSigma_m = 2e-6;                   // the grid of eq. 41 for this sigma_a, whatever sigma_m is (the same grid for every run)
+    double sigma_m = 0.0;      // sigma_a of the run
+    double gridSigma_m = 2e-6; // the grid of eq. 41 for this sigma_a, whatever sigma_m is (the same grid for every run)
     std::array<double, 3> box_m { 0.6, 0.6, 0.6 };
     std::array<double, 3> mic_m { 0.1, 0.1, 0.1 }; // on a diagonal above the head (the head at z = 0)
     double seconds = 1.0;
@@ -145,9 +145,9 @@ inline Frames stft(const std::vector<double>& x, double sampleRate_Hz)
 
 struct BandDecay
 {
-    double peak_Hz = 0.0;     // the band's peak (mean power over the fit's frames)
+    double peak_Hz = 0.0;       // the band's peak (mean power over the fit's frames)
     double rate_dB_per_s = 0.0; // how fast the band's level falls (least squares over the frames)
-    double level_dB = 0.0;    // the band's level at the fit's first frame, dB above the loudest frame's whole spectrum
+    double level_dB = 0.0;      // the band's level at the fit's first frame, dB above the loudest frame's whole spectrum
 };
 
 // The strongest bin of the mean spectrum over frames centred in [t0, t1] within [fLo, fHi]

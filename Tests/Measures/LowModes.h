@@ -86,7 +86,8 @@ inline void tiltModes(const HeadMoments& m, LowModes& out)
     const auto found = peaks(C, fs / (2.0 * (double) C.size()), 150.0, 800.0);
     double best = -1e300, f = 0.0;
     for (const auto& p : found)
-        if (p.logMagnitude > found.front().logMagnitude - std::log(1000.0 / 30.0) && p.logMagnitude - std::log(std::abs(B[p.bin]) + 1e-300) > best)
+        if (p.logMagnitude > found.front().logMagnitude - std::log(1000.0 / 30.0) &&
+            p.logMagnitude - std::log(std::abs(B[p.bin]) + 1e-300) > best)
         {
             best = p.logMagnitude - std::log(std::abs(B[p.bin]) + 1e-300);
             f = p.frequency;

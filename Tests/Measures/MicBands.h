@@ -109,8 +109,8 @@ inline DrumConfig onGridsOf(DrumConfig cfg, const DrumConfig& reference)
     {
         MembraneSpec& head = batter ? cfg.batter : cfg.carry;
         head.gridCoarseness *= Membrane::gridSpacing(batter ? reference.batter : reference.carry, 1.0 / reference.sampleRate_Hz,
-                                                     reference.kineticReserve(batter))
-                             / Membrane::gridSpacing(head, 1.0 / before.sampleRate_Hz, before.kineticReserve(batter));
+                                                     reference.kineticReserve(batter)) /
+                               Membrane::gridSpacing(head, 1.0 / before.sampleRate_Hz, before.kineticReserve(batter));
     }
     return cfg;
 }

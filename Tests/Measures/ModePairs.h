@@ -81,10 +81,7 @@ inline ModePair measuredPairs(const SweptVolumes& v, ModePair expected)
 }
 
 // The same, of a drum: cfg as given (the caller turns the snares off and the losses off).
-inline ModePair measuredPairs(const DrumConfig& cfg, ModePair expected)
-{
-    return measuredPairs(sweptVolumes(cfg), expected);
-}
+inline ModePair measuredPairs(const DrumConfig& cfg, ModePair expected) { return measuredPairs(sweptVolumes(cfg), expected); }
 
 // How fast a mode fades (dB/s), from the sum (sign +1, in-phase) or difference (-1,
 // anti-phase) of the two sums (SpectrumPeaks.h, bandDecay_dB_per_s).

@@ -12,11 +12,11 @@ namespace snaresim::test
 
 struct SnareTimes
 {
-    double lowest_ms = 0.0, lowestMean_mm = 0.0; // the wires' mean at its lowest (first 25 ms)
+    double lowest_ms = 0.0, lowestMean_mm = 0.0;       // the wires' mean at its lowest (first 25 ms)
     double swingLowest_ms = 0.0, swingLowest_mm = 0.0; // the same in the first swing (before back_ms)
-    double left_ms = 0.0;    // every point has left the head (after the first contact)
-    double back_ms = 0.0;    // first contact after every point has left the head (after the first contact)
-    double clean_ms = 0.0;   // first contact after at least 1 ms with none (after the first contact)
+    double left_ms = 0.0;                              // every point has left the head (after the first contact)
+    double back_ms = 0.0;                              // first contact after every point has left the head (after the first contact)
+    double clean_ms = 0.0;                             // first contact after at least 1 ms with none (after the first contact)
     double carryLowest_ms = 0.0, carryLowest_mm = 0.0; // the carry head's mean under the wires at its lowest
     int points = 0;
 };

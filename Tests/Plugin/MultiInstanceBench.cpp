@@ -46,9 +46,11 @@ struct Options
 
 [[noreturn]] void usage(const char* why)
 {
-    std::fprintf(stderr, "snaresim_multi_instance_bench: %s\n"
-                         "usage: snaresim_multi_instance_bench [--instances N] [--quality Q] [--sample-rate HZ] [--block N] [--repeats N] [--short]\n",
-                 why);
+    std::fprintf(
+        stderr,
+        "snaresim_multi_instance_bench: %s\n"
+        "usage: snaresim_multi_instance_bench [--instances N] [--quality Q] [--sample-rate HZ] [--block N] [--repeats N] [--short]\n",
+        why);
     std::exit(2);
 }
 

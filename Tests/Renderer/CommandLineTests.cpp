@@ -58,9 +58,9 @@ RenderJob jobOf(const Args& args)
 
 TEST_CASE("an option's value: next argument or attached with =, -o only separate", "[renderer][command-line]")
 {
-    for (const auto& args : { Args { "-o", "a.wav", "--hit", "0.5:60", "--seconds", "1.5" },
-                              Args { "--output", "a.wav", "--hit=0.5:60", "--seconds=1.5" },
-                              Args { "--output=a.wav", "--hit", "0.5:60", "--seconds=1.5" } })
+    for (const auto& args :
+         { Args { "-o", "a.wav", "--hit", "0.5:60", "--seconds", "1.5" }, Args { "--output", "a.wav", "--hit=0.5:60", "--seconds=1.5" },
+           Args { "--output=a.wav", "--hit", "0.5:60", "--seconds=1.5" } })
     {
         const auto job = jobOf(args);
         CHECK(job.output == std::filesystem::path("a.wav"));
@@ -159,8 +159,8 @@ TEST_CASE("the first mistake from the left is the one reported", "[renderer][com
 
 TEST_CASE("repeated --hit and --set keep their order", "[renderer][command-line]")
 {
-    const auto job = jobOf({ "-o", "a.wav", "--hit", "0.5:60", "--set", "output_gain=-6", "--hit=0:100", "--set",
-                             "air_model=none", "--set", "output_gain=-3", "--set", "air_model=1" });
+    const auto job = jobOf({ "-o", "a.wav", "--hit", "0.5:60", "--set", "output_gain=-6", "--hit=0:100", "--set", "air_model=none", "--set",
+                             "output_gain=-3", "--set", "air_model=1" });
     REQUIRE(job.hits.size() == 2);
     CHECK(job.hits[0].time_s == 0.5);
     CHECK(job.hits[1].time_s == 0.0);
@@ -178,10 +178,9 @@ TEST_CASE("parameter values in --set: numbers, choice names, whole numbers where
     CHECK(jobOf(playable({ "--set", "air_model=cavity" })).overrides.at(0).value == 1.0);
     CHECK(jobOf(playable({ "--set", "snares_engaged=+1" })).overrides.at(0).value == 1.0);
     CHECK(errorOf(playable({ "--set", "air_model=bogus" })) == "--set air_model: 'bogus' is not one of 0 none, 1 cavity, 2 airbox");
-    CHECK(errorOf(playable({ "--set", "air_model=0.5" }))
-          == "--set air_model=0.5: air_model takes one of 0 none, 1 cavity, 2 airbox (the number or the name), not a fraction");
-    CHECK(errorOf(playable({ "--set", "snares_engaged=0.5" }))
-          == "--set snares_engaged=0.5: snares_engaged takes 0 or 1, not a fraction");
+    CHECK(errorOf(playable({ "--set", "air_model=0.5" })) ==
+          "--set air_model=0.5: air_model takes one of 0 none, 1 cavity, 2 airbox (the number or the name), not a fraction");
+    CHECK(errorOf(playable({ "--set", "snares_engaged=0.5" })) == "--set snares_engaged=0.5: snares_engaged takes 0 or 1, not a fraction");
     CHECK(errorOf(playable({ "--set", "mallet_mass=heavy" })) == "--set mallet_mass: 'heavy' is not a number");
     CHECK(errorOf(playable({ "--set", "mallet_mass" })) == "--set: 'mallet_mass' is not ID=VALUE (see --list-params)");
     CHECK(errorOf(playable({ "--set", "nope=1" })) == "--set: unknown parameter 'nope' (see --list-params)");
@@ -260,8 +259,7 @@ TEST_CASE("the fuzzer's seed corpus: a job or a UserError, nothing else", "[rend
                 (void) makeParameters(command.job);
         }
         catch (const UserError&)
-        {
-        }
+        {}
         ++files;
     }
     CHECK(files >= 6);
@@ -269,8 +267,8 @@ TEST_CASE("the fuzzer's seed corpus: a job or a UserError, nothing else", "[rend
 
 TEST_CASE("the air box's options: microphones, walls, box, margin, threads", "[renderer][command-line]")
 {
-    const auto job = jobOf(playable({ "--air-mic", "0.1,0,0.12", "--air-mic", "-0.2,0.05,-0.3", "--walls", "reflecting",
-                                      "--box", "0.7,0.6,0.8", "--box-margin", "0.1", "--threads", "2" }));
+    const auto job = jobOf(playable({ "--air-mic", "0.1,0,0.12", "--air-mic", "-0.2,0.05,-0.3", "--walls", "reflecting", "--box",
+                                      "0.7,0.6,0.8", "--box-margin", "0.1", "--threads", "2" }));
     REQUIRE(job.airMics.size() == 2);
     CHECK(job.airMics[0].x == 0.1);
     CHECK(job.airMics[0].z == 0.12);
@@ -303,14 +301,14 @@ TEST_CASE("match options: the recording, the preset file, the parameters searche
     CHECK(job.match->string() == "snare.flac");
     CHECK(job.output->string() == "m.snarepreset");
     REQUIRE(job.matchParams);
-    CHECK(*job.matchParams
-          == std::vector<MatchCoordinate> { { snaresim::ParamId::batterTension }, { std::nullopt }, { snaresim::ParamId::snareCount } });
+    CHECK(*job.matchParams ==
+          std::vector<MatchCoordinate> { { snaresim::ParamId::batterTension }, { std::nullopt }, { snaresim::ParamId::snareCount } });
     CHECK(job.matchBudget == 100);
     CHECK_FALSE(jobOf({ "--match", "a.wav", "-o", "m.snarepreset" }).matchParams); // the default list
 
     CHECK(errorOf({ "--match", "a.wav" }) == "--match: missing -o PRESET_FILE, the preset file to write (see --help)");
-    CHECK(errorOf({ "--match", "a.wav", "-o", "m", "--match-params", "batter_tension,bogus" })
-          == "--match-params: unknown parameter 'bogus' (see --list-params)");
+    CHECK(errorOf({ "--match", "a.wav", "-o", "m", "--match-params", "batter_tension,bogus" }) ==
+          "--match-params: unknown parameter 'bogus' (see --list-params)");
     CHECK(errorOf({ "--match", "a.wav", "-o", "m", "--match-params", "" }).starts_with("--match-params: '' is not a comma-separated list"));
     CHECK(errorOf({ "--match", "a.wav", "-o", "m", "--match-params", "damping," }).starts_with("--match-params: 'damping,' is not"));
     CHECK(errorOf({ "--match", "a.wav", "-o", "m", "--match-params", "velocity,velocity" }) == "--match-params: 'velocity' is given twice");
@@ -344,7 +342,8 @@ TEST_CASE("distance options: the strikes, the recordings, and what they cannot g
     for (const auto* bad : { "kits", ":*.wav", "kits:" })
         CHECK(errorOf({ "--distance", "a.wav", "--ref", bad }).starts_with("--ref: '" + std::string(bad) + "' is not KITDIR:GLOB"));
     CHECK(errorOf({ "--distance", "a.wav", "--ref", "k:*", "-o", "x.wav" }).starts_with("-o cannot be used with --distance"));
-    CHECK(errorOf({ "--distance", "a.wav", "--ref", "k:*", "--sample-rate", "44100" }).starts_with("--sample-rate cannot be used with --distance"));
+    CHECK(errorOf({ "--distance", "a.wav", "--ref", "k:*", "--sample-rate", "44100" })
+              .starts_with("--sample-rate cannot be used with --distance"));
     CHECK(errorOf({ "--distance", "a.wav", "--ref", "k:*", "--match", "b.wav" }) == "--match cannot be used with --distance");
     CHECK(errorOf({ "--match", "a.wav", "-o", "m", "--ref", "k:*" }) == "--ref cannot be used with --match");
     CHECK(errorOf({ "--bench", "--ref", "k:*" }).starts_with("--ref cannot be used with --bench"));

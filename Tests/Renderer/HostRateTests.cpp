@@ -62,7 +62,7 @@ TEST_CASE("host rate: the interpolation passes the band to 0.4 of the simulated 
                 for (int p = 0; p < factor; ++p)
                 {
                     const long j = (long) n * factor + p - up.delay(); // the host sample it stands for
-                    if (n < up.length()) // the filter's start
+                    if (n < up.length())                               // the filter's start
                         continue;
                     const double ideal = std::cos(2.0 * std::numbers::pi * hz * (double) j / host);
                     const double y = up.value(0, p);
@@ -130,8 +130,9 @@ std::vector<double> inHostBand(const std::vector<double>& simulated)
 }
 } // namespace
 
-TEST_CASE("host rate: strikes at 88.2 to 192 kHz have the features of the strike at the simulated rate, within their just-noticeable differences",
-          "[rate]")
+TEST_CASE(
+    "host rate: strikes at 88.2 to 192 kHz have the features of the strike at the simulated rate, within their just-noticeable differences",
+    "[rate]")
 {
     // The centroid and the falls within 5 % (ISO 3382-1 Annex A for decay times), each band
     // share within one point: as the vector targets and the single-precision heads are held.
@@ -143,11 +144,11 @@ TEST_CASE("host rate: strikes at 88.2 to 192 kHz have the features of the strike
             const double simulated = physicsRateFor(rate); // 44.1 or 48 kHz
             const auto base = measureStrike(inHostBand(strikeAt(simulated, velocity, 1.0)), simulated, StrikeRules::render);
             const auto f = measureStrike(strikeAt(rate, velocity, 1.0), rate, StrikeRules::render);
-            INFO("velocity " << velocity << ", " << rate << " Hz: centroid " << f.tailCentroid_Hz.value_or(0.0) << " Hz ("
-                             << simulated << " Hz: " << base.tailCentroid_Hz.value_or(0.0) << "), fall 20 dB "
-                             << f.fall20_ms.value_or(0.0) << " ms (" << base.fall20_ms.value_or(0.0) << "), fall 40 dB "
-                             << f.fall40_ms.value_or(0.0) << " ms (" << base.fall40_ms.value_or(0.0) << "), share above 10 kHz "
-                             << f.bandShares[4] << " (" << base.bandShares[4] << ")");
+            INFO("velocity " << velocity << ", " << rate << " Hz: centroid " << f.tailCentroid_Hz.value_or(0.0) << " Hz (" << simulated
+                             << " Hz: " << base.tailCentroid_Hz.value_or(0.0) << "), fall 20 dB " << f.fall20_ms.value_or(0.0) << " ms ("
+                             << base.fall20_ms.value_or(0.0) << "), fall 40 dB " << f.fall40_ms.value_or(0.0) << " ms ("
+                             << base.fall40_ms.value_or(0.0) << "), share above 10 kHz " << f.bandShares[4] << " (" << base.bandShares[4]
+                             << ")");
             REQUIRE(f.tailCentroid_Hz);
             REQUIRE(f.fall20_ms);
             REQUIRE(f.fall40_ms);
@@ -190,6 +191,6 @@ TEST_CASE("host rate: below 48 kHz the heads and the wires keep their 48 kHz gri
     const DrumConfig fast = makeDrumConfig(ParameterSet {}, 64000.0);
     MembraneSpec own = fast.batter;
     own.gridTimeStep_s = 0.0;
-    CHECK(Membrane::gridSpacing(fast.batter, 1.0 / 64000.0, fast.kineticReserve(true))
-          == Membrane::gridSpacing(own, 1.0 / 64000.0, fast.kineticReserve(true)));
+    CHECK(Membrane::gridSpacing(fast.batter, 1.0 / 64000.0, fast.kineticReserve(true)) ==
+          Membrane::gridSpacing(own, 1.0 / 64000.0, fast.kineticReserve(true)));
 }

@@ -102,8 +102,8 @@ TEST_CASE("bench: --json reports the block timings with sane values", "[renderer
     {
         const auto* head = ofBatter ? &config.batter : &config.carry;
         const double reserve = config.kineticReserve(ofBatter);
-        const double bound = std::sqrt((2.0 * k * k * head->gridTension_N_per_m / head->density_kg_per_m2
-                                        + 8.0 * head->gridSigma1_m2_per_s * k) / (1.0 - reserve));
+        const double bound = std::sqrt(
+            (2.0 * k * k * head->gridTension_N_per_m / head->density_kg_per_m2 + 8.0 * head->gridSigma1_m2_per_s * k) / (1.0 - reserve));
         CHECK(snaresim::Membrane::gridSpacing(*head, k, reserve) == Approx(snaresim::gridCoarsenessFor(7839.5127) * bound).epsilon(1e-12));
     }
     CHECK(number(json, "batter_grid_spacing_m") == Approx(drum.batter().grid().spacing()).epsilon(1e-12));
@@ -134,7 +134,8 @@ TEST_CASE("bench: --json reports the block timings with sane values", "[renderer
     }
 }
 
-TEST_CASE("bench: with the air box it reports the air update against a bare stencil, the drum's compute and the peak size", "[renderer][bench][airbox]")
+TEST_CASE("bench: with the air box it reports the air update against a bare stencil, the drum's compute and the peak size",
+          "[renderer][bench][airbox]")
 {
     TempDir dir;
     // 22.05 kHz: the default 0.6 m box on a grid of twice the spacing (eq. 41), about 12 000 points
@@ -185,8 +186,7 @@ TEST_CASE("bench: the block size defaults to 64 and does not change the audio", 
     TempDir dir;
     const auto a = dir.out() / "a.wav";
     const auto b = dir.out() / "b.wav";
-    const std::vector<std::string> quick { "--seconds", "0.2", "--set", "bandwidth=5093.8628", "--hit", "0.013:127",
-                                           "--hit", "0.05:90" };
+    const std::vector<std::string> quick { "--seconds", "0.2", "--set", "bandwidth=5093.8628", "--hit", "0.013:127", "--hit", "0.05:90" };
 
     const auto json = benchJson(dir, with({ "-o", a.string() }, quick));
     CHECK(number(json, "block_size") == 64);
@@ -268,8 +268,8 @@ TEST_CASE("bench: the step profile of one more run, phase by phase, with shares 
 {
     TempDir dir;
     const bool airBox = GENERATE(false, true);
-    const auto json = airBox ? benchJson(dir, { "--model", "airbox", "--sample-rate", "22050", "--seconds", "0.02",
-                                                "--bench-repeat", "1", "--set", "bandwidth=5093.8628" })
+    const auto json = airBox ? benchJson(dir, { "--model", "airbox", "--sample-rate", "22050", "--seconds", "0.02", "--bench-repeat", "1",
+                                                "--set", "bandwidth=5093.8628" })
                              : benchJson(dir, { "--bench-short" });
     const auto& profile = json["profile"];
     REQUIRE(profile.isObject());

@@ -17,8 +17,8 @@
 #include <catch2/catch.hpp>
 
 #include <charconv>
-#include <fstream>
 #include <cmath>
+#include <fstream>
 #include <functional>
 #include <numbers>
 #include <optional>
@@ -38,8 +38,7 @@ std::vector<std::string> with(std::vector<std::string> args, const std::vector<s
 
 // Runs a render that must succeed with a WAV of 0.3 s at 48 kHz and `channels` finite
 // channels; returns them.
-std::vector<std::vector<float>> renderOk(const TempDir& dir, const fs::path& wav, const std::vector<std::string>& args,
-                                         int channels = 1)
+std::vector<std::vector<float>> renderOk(const TempDir& dir, const fs::path& wav, const std::vector<std::string>& args, int channels = 1)
 {
     const auto run = runRenderer(with({ "-o", wav.string() }, args), dir.root() / "capture");
     INFO("stderr: " << run.err);
@@ -150,8 +149,7 @@ TEST_CASE("model: --model none and --model cavity both render and sound differen
     CHECK(clearlyDifferent(none[0], cavity[0]));
 
     // A later --set air_model wins over --model (and the engine is deterministic).
-    const auto overridden = renderOk(dir, dir.out() / "overridden.wav",
-                                     with(kQuick, { "--model", "none", "--set", "air_model=cavity" }));
+    const auto overridden = renderOk(dir, dir.out() / "overridden.wav", with(kQuick, { "--model", "none", "--set", "air_model=cavity" }));
     CHECK(overridden[0] == cavity[0]);
 
     CHECK(entries(dir.out()) == std::vector<std::string> { "cavity.wav", "none.wav", "overridden.wav" });
@@ -210,8 +208,8 @@ TEST_CASE("snares: --set snares_engaged=0 renders and differs from the default",
     REQUIRE(onRun.exitCode == 0);
     const auto onJson = parseJson(onRun.out);
 
-    const auto offRun = runRenderer(
-        with({ "-o", (dir.out() / "off.wav").string(), "--json", "--set", "snares_engaged=0" }, kQuick), capture);
+    const auto offRun =
+        runRenderer(with({ "-o", (dir.out() / "off.wav").string(), "--json", "--set", "snares_engaged=0" }, kQuick), capture);
     INFO("stderr: " << offRun.err);
     REQUIRE(offRun.exitCode == 0);
     const auto offJson = parseJson(offRun.out);
@@ -239,8 +237,8 @@ TEST_CASE("snares: --set snares_engaged=0 renders and differs from the default",
 
     // The other snare controls reach the engine too.
     renderOk(dir, dir.out() / "controls.wav",
-             with(kQuick, { "--set", "snare_tension=50", "--set", "snare_count=12", "--set", "carry_tension=2500",
-                            "--set", "shell_depth=0.1" }));
+             with(kQuick,
+                  { "--set", "snare_tension=50", "--set", "snare_count=12", "--set", "carry_tension=2500", "--set", "shell_depth=0.1" }));
 }
 
 TEST_CASE("plots: --energy-plot and --spectrogram write PNG images", "[renderer]")
@@ -256,10 +254,9 @@ TEST_CASE("plots: --energy-plot and --spectrogram write PNG images", "[renderer]
         // The heads in double precision: the balance is then a curve at double round-off, not
         // float round-off's random walk. Light damping (25 %, high damping 4e-4 m^2/s, 20 N
         // wires): the total's plateau then ends on a slope the pixels resolve.
-        const auto run = runRenderer(with({ "-o", wav.string(), "--mic", "all", "--energy-plot", energy.string(),
-                                            "--spectrogram", spectrum.string(), "--energy-csv", csv.string(), "--json",
-                                            "--set", "head_precision=double", "--set", "damping=25", "--set",
-                                            "high_damping=4e-4", "--set", "snare_tension=20" },
+        const auto run = runRenderer(with({ "-o", wav.string(), "--mic", "all", "--energy-plot", energy.string(), "--spectrogram",
+                                            spectrum.string(), "--energy-csv", csv.string(), "--json", "--set", "head_precision=double",
+                                            "--set", "damping=25", "--set", "high_damping=4e-4", "--set", "snare_tension=20" },
                                           kQuick),
                                      dir.root() / "capture");
         INFO("stderr: " << run.err);
@@ -305,7 +302,7 @@ TEST_CASE("plots: --energy-plot and --spectrogram write PNG images", "[renderer]
                 hi = v, hiAt = n;
         }
         const auto axisRange = snaresim::render::EnergyPlot::balanceRange(lo, hi);
-        const double axisLo = axisRange.first, axisHi = axisRange.second;   // (no structured binding: a lambda captures them)
+        const double axisLo = axisRange.first, axisHi = axisRange.second; // (no structured binding: a lambda captures them)
         CHECK(axisLo == Approx(lo - 0.08 * (hi - lo)).epsilon(1e-12));
         CHECK(axisHi == Approx(hi + 0.08 * (hi - lo)).epsilon(1e-12));
         const auto balanceArea = snaresim::render::EnergyPlot::balanceArea();
@@ -316,7 +313,8 @@ TEST_CASE("plots: --energy-plot and --spectrogram write PNG images", "[renderer]
         REQUIRE(bottom.has_value());
         INFO("balance from " << lo << " (sample " << loAt << ") to " << hi << " (sample " << hiAt << "); curve from pixel "
                              << top->toString() << " to " << bottom->toString() << ", expected (" << xOf(balanceArea, hiAt / rate * 1000.0)
-                             << ", " << yOfBalance(hi) << ") and (" << xOf(balanceArea, loAt / rate * 1000.0) << ", " << yOfBalance(lo) << ")");
+                             << ", " << yOfBalance(hi) << ") and (" << xOf(balanceArea, loAt / rate * 1000.0) << ", " << yOfBalance(lo)
+                             << ")");
         CHECK(std::abs(top->y + 0.5 - yOfBalance(hi)) <= kCurveTolerance_px);
         CHECK(std::abs(bottom->y + 0.5 - yOfBalance(lo)) <= kCurveTolerance_px);
         // Where they are drawn: the columns around the extreme pixels hold samples that reach
@@ -342,7 +340,7 @@ TEST_CASE("plots: --energy-plot and --spectrogram write PNG images", "[renderer]
         const double v = snaresim::strikeSpeedFromVelocity(100, params.get(snaresim::ParamId::strikeSpeedMax));
         const double strikeEnergy = 0.5 * params.get(snaresim::ParamId::malletMass) * v * v;
         CHECK(h0 == Approx(strikeEnergy).epsilon(1e-5)); // less the first step's losses
-        double largest = 0.0; // over the ledger's terms and the total, as the panel plots them
+        double largest = 0.0;                            // over the ledger's terms and the total, as the panel plots them
         for (const auto& row : rows)
         {
             for (const auto c : columns.terms)
@@ -354,8 +352,8 @@ TEST_CASE("plots: --energy-plot and --spectrogram write PNG images", "[renderer]
         CHECK(axisTop == 1.0);
         const double axisBottom = axisTop * std::pow(10.0, -snaresim::render::EnergyPlot::componentDecades);
         const auto componentArea = snaresim::render::EnergyPlot::componentArea();
-        const double yTotal = componentArea.getBottom()
-                            - std::log10(strikeEnergy / axisBottom) / std::log10(axisTop / axisBottom) * componentArea.getHeight();
+        const double yTotal = componentArea.getBottom() -
+                              std::log10(strikeEnergy / axisBottom) / std::log10(axisTop / axisBottom) * componentArea.getHeight();
         std::size_t kept = 0; // the last row the total holds the strike's energy (within 1 %)
         while (kept + 1 < rows.size() && rows[kept + 1][columns.total] > 0.99 * h0)
             ++kept;
@@ -372,8 +370,8 @@ TEST_CASE("plots: --energy-plot and --spectrogram write PNG images", "[renderer]
 
     SECTION("a render shorter than one analysis window, lossless")
     {
-        const auto run = runRenderer({ "-o", wav.string(), "--hit", "0:127", "--seconds", "0.02", "--lossless",
-                                       "--energy-plot", energy.string(), "--spectrogram", spectrum.string() },
+        const auto run = runRenderer({ "-o", wav.string(), "--hit", "0:127", "--seconds", "0.02", "--lossless", "--energy-plot",
+                                       energy.string(), "--spectrogram", spectrum.string() },
                                      dir.root() / "capture");
         INFO("stderr: " << run.err);
         REQUIRE(run.exitCode == 0);
@@ -411,15 +409,15 @@ TEST_CASE("plots: the spectrogram's first frames are brightest at the batter's (
     TempDir dir;
     const auto png = dir.out() / "spectrum.png";
     renderOk(dir, dir.out() / "top.wav",
-             with(kQuick, { "--mic", "top", "--set", "strike_position=0", "--set", "mic_top_position=0", "--model", "none",
-                            "--set", "outside_air=off", "--set", "snares_engaged=0", "--spectrogram", png.string() }));
+             with(kQuick, { "--mic", "top", "--set", "strike_position=0", "--set", "mic_top_position=0", "--model", "none", "--set",
+                            "outside_air=off", "--set", "snares_engaged=0", "--spectrogram", png.string() }));
     requirePicture(png, 1200, 700);
     const auto image = loadImage(png);
     REQUIRE(image.isValid());
 
     const auto batter = snaresim::makeDrumConfig(snaresim::ParameterSet {}, 48000.0).batter;
-    const double f01 = 2.404825557695773 * std::sqrt(batter.tension_N_per_m / batter.density_kg_per_m2)
-                     / (2.0 * std::numbers::pi * batter.radius_m);
+    const double f01 =
+        2.404825557695773 * std::sqrt(batter.tension_N_per_m / batter.density_kg_per_m2) / (2.0 * std::numbers::pi * batter.radius_m);
     // The axis (Spectrogram.h): rows of equal steps of log frequency from 40 Hz to Nyquist,
     // row 0 at the bottom of the area.
     const double rate = 48000.0, samples = 14400.0;
@@ -449,8 +447,8 @@ TEST_CASE("plots: the spectrogram's first frames are brightest at the batter's (
                 lightest = light, brightest = r;
         }
         INFO("frame " << frame << " (pixel column " << x << "): brightest row " << brightest << " ("
-                      << snaresim::render::Spectrogram::rowEdge_Hz(brightest, rate) << " Hz); f01 = " << f01 << " Hz at row "
-                      << rowOf(f01) << ", rows " << lowest << " to " << highest << " within a bin of it");
+                      << snaresim::render::Spectrogram::rowEdge_Hz(brightest, rate) << " Hz); f01 = " << f01 << " Hz at row " << rowOf(f01)
+                      << ", rows " << lowest << " to " << highest << " within a bin of it");
         CHECK(brightest >= lowest);
         CHECK(brightest <= highest);
     }
@@ -473,10 +471,9 @@ TEST_CASE("plots: --snare-plot writes a PNG of the snare wires", "[renderer]")
     SECTION("after a strike, with the other outputs")
     {
         const auto energy = dir.out() / "energy.png";
-        const auto run = runRenderer(with({ "-o", wav.string(), "--snare-plot", snares.string(), "--energy-plot",
-                                            energy.string(), "--json" },
-                                          kQuick),
-                                     dir.root() / "capture");
+        const auto run =
+            runRenderer(with({ "-o", wav.string(), "--snare-plot", snares.string(), "--energy-plot", energy.string(), "--json" }, kQuick),
+                        dir.root() / "capture");
         INFO("stderr: " << run.err);
         REQUIRE(run.exitCode == 0);
         const auto json = parseJson(run.out);
@@ -495,7 +492,7 @@ TEST_CASE("plots: --snare-plot writes a PNG of the snare wires", "[renderer]")
         const int points = drum.snareContact().numPoints();
         CHECK(points == config.snares.count * (drum.snareWires().intervals() - 1)); // every interior node
         drum.strikeAtDefaultPoint(snaresim::strikeSpeedFromVelocity(100, config.strikeSpeedMax_m_per_s));
-        const int window = 1200; // 25 ms
+        const int window = 1200;         // 25 ms
         std::vector<int> contacts { 0 }; // time 0, before the first step
         for (int n = 0; n < window; ++n)
         {
@@ -522,8 +519,8 @@ TEST_CASE("plots: --snare-plot writes a PNG of the snare wires", "[renderer]")
         REQUIRE(top.has_value());
         const int end = rightmostInRow(image, area, top->y, isBlueCurve);
         INFO(*most << " of " << points << " points touch from time " << first << " to " << last << "; the count's top at pixel "
-                   << top->toString() << " to x = " << end << ", expected y " << yMost << " from x " << xOf((double) first)
-                   << " to " << xOf((double) last + 1));
+                   << top->toString() << " to x = " << end << ", expected y " << yMost << " from x " << xOf((double) first) << " to "
+                   << xOf((double) last + 1));
         CHECK(std::abs(top->y + 0.5 - yMost) <= kCurveTolerance_px);
         CHECK(std::abs(top->x + 0.5 - std::max(xOf((double) first), area.getX() + 1.0)) <= kCurveTolerance_px);
         // A step curve: the count holds until the next state.
@@ -532,8 +529,8 @@ TEST_CASE("plots: --snare-plot writes a PNG of the snare wires", "[renderer]")
 
     SECTION("a render shorter than 25 ms after a late strike, lossless, at 44.1 kHz")
     {
-        const auto run = runRenderer({ "-o", wav.string(), "--hit", "0.012:127", "--seconds", "0.02", "--lossless",
-                                       "--sample-rate", "44100", "--snare-plot", snares.string() },
+        const auto run = runRenderer({ "-o", wav.string(), "--hit", "0.012:127", "--seconds", "0.02", "--lossless", "--sample-rate",
+                                       "44100", "--snare-plot", snares.string() },
                                      dir.root() / "capture");
         INFO("stderr: " << run.err);
         REQUIRE(run.exitCode == 0);
@@ -562,8 +559,8 @@ TEST_CASE("plots: --snare-plot writes a PNG of the snare wires", "[renderer]")
 
     SECTION("no strike inside the render")
     {
-        const auto run = runRenderer({ "-o", wav.string(), "--hit", "0.5:100", "--seconds", "0.01", "--set",
-                                       "bandwidth=7839.5127", "--snare-plot", snares.string(), "--json" },
+        const auto run = runRenderer({ "-o", wav.string(), "--hit", "0.5:100", "--seconds", "0.01", "--set", "bandwidth=7839.5127",
+                                       "--snare-plot", snares.string(), "--json" },
                                      dir.root() / "capture");
         INFO("stderr: " << run.err);
         REQUIRE(run.exitCode == 0);

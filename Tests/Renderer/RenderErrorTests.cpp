@@ -2,8 +2,8 @@
 // stderr starting with "snaresim-render: error: ", and leaves nothing in the target
 // directory (no output, no temporary).
 
-#include "Report.h"
 #include "RendererTestSupport.h"
+#include "Report.h"
 
 #include "Parameters.h"
 
@@ -45,8 +45,8 @@ TEST_CASE("bad input: unknown options, stray arguments and missing values", "[re
     requireBadInput(dir, { "--hit", "0:100", "--snare-plot" }, "--snare-plot");
     requireBadInput(dir, { "--hit", "0:100", "--snare-plot", "--json" }, "--snare-plot");
     requireBadInput(dir, { "--hit", "0:100", "--snare-plot", "" }, "empty file name");
-    requireBadInput(dir, { "--hit", "0:100", "--snare-plot", (dir.out() / "a.png").string(), "--snare-plot",
-                           (dir.out() / "b.png").string() },
+    requireBadInput(dir,
+                    { "--hit", "0:100", "--snare-plot", (dir.out() / "a.png").string(), "--snare-plot", (dir.out() / "b.png").string() },
                     "more than once");
 }
 
@@ -145,11 +145,11 @@ TEST_CASE("bad input: a grid or sample rate the scheme cannot take", "[renderer]
     // At 8 kHz, Quality's coarsest grids (about 4 times the stability bound, eq. 39) leave fewer
     // than 4 grid points per radius; the engine throws std::invalid_argument, reported as "the
     // model cannot be ...".
-    requireBadInput(dir, { "--hit", "0:100", "--sample-rate", "8000", "--set", "bandwidth=3750" },
-                    "the model cannot be");
+    requireBadInput(dir, { "--hit", "0:100", "--sample-rate", "8000", "--set", "bandwidth=3750" }, "the model cannot be");
 }
 
-TEST_CASE("bad input: an air box that does not hold the drum, microphones outside it or in the shell, no threads", "[renderer][errors][airbox]")
+TEST_CASE("bad input: an air box that does not hold the drum, microphones outside it or in the shell, no threads",
+          "[renderer][errors][airbox]")
 {
     TempDir dir;
     const std::vector<std::string> box { "--hit", "0:100", "--seconds", "0.01", "--sample-rate", "22050", "--model", "airbox" };
@@ -196,8 +196,7 @@ TEST_CASE("bad input: unwritable outputs fail before rendering and leave nothing
     fs::remove(dir.out() / "sub");
 
     // The WAV is fine but the energy CSV is not: neither appears.
-    requireBadInput(dir, { "--hit", "0:100", "--energy-csv", (dir.out() / "nowhere" / "e.csv").string() },
-                    "does not exist");
+    requireBadInput(dir, { "--hit", "0:100", "--energy-csv", (dir.out() / "nowhere" / "e.csv").string() }, "does not exist");
 
     // Both outputs on the same file.
     requireBadInput(dir, { "--hit", "0:100", "--energy-csv", (dir.out() / "out.wav").string() }, "same file");
@@ -207,17 +206,15 @@ TEST_CASE("bad input: unwritable outputs fail before rendering and leave nothing
     // Every other output is fine, and none appears.
     const auto energy = (dir.out() / "e.png").string();
     const auto spectrum = (dir.out() / "s.png").string();
-    requireBadInput(dir, { "--hit", "0:100", "--energy-csv", (dir.out() / "e.csv").string(), "--spectrogram", spectrum,
-                           "--energy-plot", (dir.out() / "nowhere" / "e.png").string() },
+    requireBadInput(dir,
+                    { "--hit", "0:100", "--energy-csv", (dir.out() / "e.csv").string(), "--spectrogram", spectrum, "--energy-plot",
+                      (dir.out() / "nowhere" / "e.png").string() },
                     "does not exist");
-    requireBadInput(dir, { "--hit", "0:100", "--energy-plot", energy, "--spectrogram",
-                           (dir.out() / "nowhere" / "s.png").string() },
+    requireBadInput(dir, { "--hit", "0:100", "--energy-plot", energy, "--spectrogram", (dir.out() / "nowhere" / "s.png").string() },
                     "does not exist");
     fs::create_directory(dir.out() / "sub.png");
-    requireBadInput(dir, { "--hit", "0:100", "--energy-plot", energy, "--spectrogram", (dir.out() / "sub.png").string() },
-                    "directory");
-    requireBadInput(dir, { "--hit", "0:100", "--energy-plot", energy, "--snare-plot", (dir.out() / "sub.png").string() },
-                    "directory");
+    requireBadInput(dir, { "--hit", "0:100", "--energy-plot", energy, "--spectrogram", (dir.out() / "sub.png").string() }, "directory");
+    requireBadInput(dir, { "--hit", "0:100", "--energy-plot", energy, "--snare-plot", (dir.out() / "sub.png").string() }, "directory");
     fs::remove(dir.out() / "sub.png");
     requireBadInput(dir, { "--hit", "0:100", "--energy-plot", (dir.out() / "out.wav").string() }, "same file");
     requireBadInput(dir, { "--hit", "0:100", "--spectrogram", energy, "--energy-plot", energy }, "same file");
@@ -225,17 +222,15 @@ TEST_CASE("bad input: unwritable outputs fail before rendering and leave nothing
 
     // --snare-plot: the same rules.
     const auto snares = (dir.out() / "w.png").string();
-    requireBadInput(dir, { "--hit", "0:100", "--energy-plot", energy, "--spectrogram", spectrum, "--snare-plot",
-                           (dir.out() / "nowhere" / "w.png").string() },
+    requireBadInput(dir,
+                    { "--hit", "0:100", "--energy-plot", energy, "--spectrogram", spectrum, "--snare-plot",
+                      (dir.out() / "nowhere" / "w.png").string() },
                     "does not exist");
-    requireBadInput(dir, { "--hit", "0:100", "--snare-plot", snares, "--energy-plot",
-                           (dir.out() / "nowhere" / "e.png").string() },
+    requireBadInput(dir, { "--hit", "0:100", "--snare-plot", snares, "--energy-plot", (dir.out() / "nowhere" / "e.png").string() },
                     "does not exist");
     requireBadInput(dir, { "--hit", "0:100", "--snare-plot", (dir.out() / "out.wav").string() }, "same file");
     requireBadInput(dir, { "--hit", "0:100", "--spectrogram", snares, "--snare-plot", snares }, "same file");
-    requireBadInput(dir, { "--hit", "0:100", "--snare-plot", (dir.out() / "." / "e.png").string(), "--energy-plot",
-                           energy },
-                    "same file");
+    requireBadInput(dir, { "--hit", "0:100", "--snare-plot", (dir.out() / "." / "e.png").string(), "--energy-plot", energy }, "same file");
 
     // A directory without write permission (skipped when running as root).
     const auto locked = dir.root() / "locked";
@@ -253,7 +248,8 @@ TEST_CASE("bad input: unwritable outputs fail before rendering and leave nothing
     fs::permissions(locked, fs::perms::owner_all);
 }
 
-TEST_CASE("interrupted: SIGINT, SIGTERM or SIGHUP during a render leaves no output, no temporary, and an older file intact", "[renderer][errors]")
+TEST_CASE("interrupted: SIGINT, SIGTERM or SIGHUP during a render leaves no output, no temporary, and an older file intact",
+          "[renderer][errors]")
 {
     int tried = 0;
     for (const int signalNumber : { SIGINT, SIGTERM, SIGHUP })
@@ -269,8 +265,8 @@ TEST_CASE("interrupted: SIGINT, SIGTERM or SIGHUP during a render leaves no outp
             old << "an older render";
         }
 
-        const int pid = startRenderer({ "-o", target.string(), "--energy-csv", (dir.out() / "long.csv").string(),
-                                        "--energy-plot", (dir.out() / "long-energy.png").string(), "--spectrogram",
+        const int pid = startRenderer({ "-o", target.string(), "--energy-csv", (dir.out() / "long.csv").string(), "--energy-plot",
+                                        (dir.out() / "long-energy.png").string(), "--spectrogram",
                                         (dir.out() / "long-spectrum.png").string(), "--hit", "0:100", "--seconds", "600" },
                                       capture);
 
@@ -289,5 +285,6 @@ TEST_CASE("interrupted: SIGINT, SIGTERM or SIGHUP during a render leaves no outp
         CHECK(readText(target) == "an older render");
         ++tried;
     }
-    snaresim::test::report() << "interrupted renders: " << tried << " signals (SIGINT, SIGTERM, SIGHUP), exit 128 + N, nothing left behind\n";
+    snaresim::test::report() << "interrupted renders: " << tried
+                             << " signals (SIGINT, SIGTERM, SIGHUP), exit 128 + N, nothing left behind\n";
 }

@@ -2,8 +2,8 @@
 // rendered with a progress line when stderr is a terminal (and only then, and not with --json),
 // in memory that grows with neither the number of notes beyond their list nor the length.
 
-#include "Report.h"
 #include "RendererTestSupport.h"
+#include "Report.h"
 
 #include <catch2/catch.hpp>
 
@@ -14,11 +14,11 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <cstdlib>
-#include <string>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <iostream>
+#include <string>
 
 using namespace rendertest;
 
@@ -30,7 +30,7 @@ namespace
 void writeMidi(const fs::path& file, int notes)
 {
     std::string track;
-    track += std::string("\x00\xff\x51\x03\x0f\x42\x40", 7);    // tempo: 1 000 000 us a quarter note
+    track += std::string("\x00\xff\x51\x03\x0f\x42\x40", 7); // tempo: 1 000 000 us a quarter note
     for (int i = 0; i < notes; ++i)
     {
         track += i == 0 ? std::string("\x00\x99", 2) : std::string("\x01", 1);
@@ -66,9 +66,9 @@ int waitPolling(pid_t pid, long& peak_kB)
 struct PtyRun
 {
     int exitCode = -1;
-    std::string terminal;   // what the renderer wrote to the terminal (stderr)
-    std::string out;        // its stdout
-    long maxRss_kB = 0;     // the renderer's own peak (VmHWM)
+    std::string terminal; // what the renderer wrote to the terminal (stderr)
+    std::string out;      // its stdout
+    long maxRss_kB = 0;   // the renderer's own peak (VmHWM)
 };
 
 // Runs snaresim-render with stderr (and stdin) on a pseudo-terminal and stdout to a file.
@@ -103,7 +103,7 @@ PtyRun runOnTerminal(const std::vector<std::string>& args, const fs::path& stdou
         else if (n < 0 && errno == EINTR)
             continue;
         else
-            break;  // EIO: the renderer closed the terminal (it exited)
+            break; // EIO: the renderer closed the terminal (it exited)
     }
     ::close(master);
 
@@ -137,8 +137,8 @@ TEST_CASE("a MIDI file of 100 000 notes renders with a progress line on a termin
 {
     TempDir dir;
     const auto many = dir.in() / "many.mid", few = dir.in() / "few.mid";
-    writeMidi(many, 100000);    // 100 s of notes, one every millisecond
-    writeMidi(few, 1000);       // the first second of them
+    writeMidi(many, 100000); // 100 s of notes, one every millisecond
+    writeMidi(few, 1000);    // the first second of them
 
     // On a terminal: the progress line, then the summary on stdout. 400 s of audio, so that
     // the render surely takes longer than the line's delay (2 s) on any machine.
@@ -155,8 +155,9 @@ TEST_CASE("a MIDI file of 100 000 notes renders with a progress line on a termin
     CHECK(run.out.find("strikes") != std::string::npos);
 
     // The same on a terminal with --json: no progress, stdout is one JSON object.
-    const auto quiet = runOnTerminal(cheap({ "-o", (dir.out() / "many-json.wav").string(), "--midi", many.string(), "--seconds", "400", "--json" }),
-                                     dir.root() / "stdout-json.txt");
+    const auto quiet =
+        runOnTerminal(cheap({ "-o", (dir.out() / "many-json.wav").string(), "--midi", many.string(), "--seconds", "400", "--json" }),
+                      dir.root() / "stdout-json.txt");
     CHECK(quiet.exitCode == 0);
     CHECK(quiet.terminal.find("snaresim-render") == std::string::npos);
     CHECK(parseJson(quiet.out).getProperty("strikes", 0).operator int() == 100000);
@@ -164,7 +165,8 @@ TEST_CASE("a MIDI file of 100 000 notes renders with a progress line on a termin
     // Stderr on a pipe: nothing on it. And the memory: the 100 000 notes against 1 000 notes
     // rendered for as long, and those against a render a tenth as long.
     RunResult manyRun, fewRun, shortRun;
-    const long manyRss = peakRssOfRun(cheap({ "-o", (dir.out() / "a.wav").string(), "--midi", many.string(), "--seconds", "400" }), dir.root() / "capture", manyRun);
+    const long manyRss = peakRssOfRun(cheap({ "-o", (dir.out() / "a.wav").string(), "--midi", many.string(), "--seconds", "400" }),
+                                      dir.root() / "capture", manyRun);
     const long fewRss = peakRssOfRun(cheap({ "-o", (dir.out() / "b.wav").string(), "--midi", few.string(), "--seconds", "400" }),
                                      dir.root() / "capture", fewRun);
     const long shortRss = peakRssOfRun(cheap({ "-o", (dir.out() / "c.wav").string(), "--midi", few.string(), "--seconds", "40" }),
@@ -181,6 +183,6 @@ TEST_CASE("a MIDI file of 100 000 notes renders with a progress line on a termin
     CHECK(fewRss - shortRss < 2 * 1024);
     CHECK(manyRss - fewRss < 100000 * 400 / 1024);
     snaresim::test::report() << "100 000-note MIDI file: 400 s of audio at 16 kHz rendered with a progress line on a terminal; peak RSS "
-              << manyRss / 1024 << " MB (1 000 notes for as long: " << fewRss / 1024 << " MB; a tenth as long: "
-              << shortRss / 1024 << " MB)\n";
+                             << manyRss / 1024 << " MB (1 000 notes for as long: " << fewRss / 1024
+                             << " MB; a tenth as long: " << shortRss / 1024 << " MB)\n";
 }

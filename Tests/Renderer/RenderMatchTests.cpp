@@ -61,16 +61,15 @@ void writeFlac(const fs::path& file, const std::vector<float>& samples, unsigned
 // Two decaying modes and a noisy attack: a strike the features accept.
 std::vector<float> syntheticStrike(double rate, double seconds)
 {
-    std::vector<float> x((std::size_t) (rate * seconds));
+    std::vector<float> x((std::size_t)(rate * seconds));
     std::uint32_t noise = 1;
     for (std::size_t i = 0; i < x.size(); ++i)
     {
         const double t = (double) i / rate;
         noise = noise * 1664525u + 1013904223u;
         const double white = (double) noise / 4294967296.0 - 0.5;
-        x[i] = (float) (0.5 * std::exp(-12.0 * t) * std::sin(2.0 * std::numbers::pi * 190.0 * t)
-                        + 0.3 * std::exp(-20.0 * t) * std::sin(2.0 * std::numbers::pi * 330.0 * t)
-                        + 0.4 * std::exp(-40.0 * t) * white);
+        x[i] = (float) (0.5 * std::exp(-12.0 * t) * std::sin(2.0 * std::numbers::pi * 190.0 * t) +
+                        0.3 * std::exp(-20.0 * t) * std::sin(2.0 * std::numbers::pi * 330.0 * t) + 0.4 * std::exp(-40.0 * t) * white);
     }
     return x;
 }
@@ -195,10 +194,10 @@ TEST_CASE("match: the membrane and snare tensions of a SnareSim strike recovered
     {
         TempDir dir;
         const auto recording = (dir.in() / "truth.wav").string();
-        const auto made = runRenderer({ "-o", recording, "--hit", "0:100", "--seconds", "1", "--set",
-                                        "batter_tension=" + std::to_string(truth.batter), "--set",
-                                        "snare_tension=" + std::to_string(truth.snare) },
-                                      dir.root() / "capture");
+        const auto made =
+            runRenderer({ "-o", recording, "--hit", "0:100", "--seconds", "1", "--set", "batter_tension=" + std::to_string(truth.batter),
+                          "--set", "snare_tension=" + std::to_string(truth.snare) },
+                        dir.root() / "capture");
         REQUIRE(made.exitCode == 0);
 
         const auto preset = dir.out() / "match.snarepreset";
@@ -212,9 +211,8 @@ TEST_CASE("match: the membrane and snare tensions of a SnareSim strike recovered
         REQUIRE(run.exitCode == 0);
         const auto json = parseJson(run.out);
         const double batter = parameterOf(json, "batter_tension"), snare = parameterOf(json, "snare_tension");
-        WARN("truth " << truth.batter << " N/m, " << truth.snare << " N; found " << batter << " N/m, " << snare
-                      << " N; distance " << (double) json["distance"] << " in " << (int) json["renders"] << " renders, " << seconds
-                      << " s");
+        WARN("truth " << truth.batter << " N/m, " << truth.snare << " N; found " << batter << " N/m, " << snare << " N; distance "
+                      << (double) json["distance"] << " in " << (int) json["renders"] << " renders, " << seconds << " s");
         CHECK(std::abs(batter / truth.batter - 1.0) < 0.05);
         CHECK(std::abs(snare / truth.snare - 1.0) < 0.15);
         CHECK((int) json["renders"] <= 100);
@@ -232,9 +230,9 @@ TEST_CASE("match: the membrane and snare tensions of a SnareSim strike recovered
             INFO(s.key);
             CHECK(params.get(s.id) == Approx(parameterOf(json, std::string(s.key).c_str())).epsilon(1e-13).margin(1e-300));
         }
-        const auto render = runRenderer({ "--preset", preset.string(), "--hit", "0:100", "--seconds", "0.2", "-o",
-                                          (dir.out() / "again.wav").string(), "--json" },
-                                        dir.root() / "capture");
+        const auto render = runRenderer(
+            { "--preset", preset.string(), "--hit", "0:100", "--seconds", "0.2", "-o", (dir.out() / "again.wav").string(), "--json" },
+            dir.root() / "capture");
         CHECK(render.exitCode == 0);
         CHECK(entries(dir.out()) == std::vector<std::string> { "again.wav", "match.snarepreset" });
     }
@@ -272,7 +270,9 @@ TEST_CASE("match: the default parameters searched, without the snare ones when t
     const auto recording = matchInput(dir, "strike.wav", syntheticStrike(48000.0, 1.0)).string();
     for (const bool snaresOff : { false, true })
     {
-        std::vector<std::string> args { "--match", recording, "-o", (dir.out() / "m.snarepreset").string(), "--match-budget", "12", "--json" };
+        std::vector<std::string> args {
+            "--match", recording, "-o", (dir.out() / "m.snarepreset").string(), "--match-budget", "12", "--json"
+        };
         if (snaresOff)
             args.insert(args.end(), { "--set", "snares_engaged=off" });
         const auto run = runRenderer(args, dir.root() / "capture");
@@ -296,12 +296,12 @@ TEST_CASE("match: without --preset and --match-params the search starts from the
     // A strike of Piccolo as the recording: of the factory presets, Piccolo's own strike lies at 0 dB.
     TempDir dir;
     const auto recording = (dir.in() / "piccolo.wav").string();
-    REQUIRE(runRenderer({ "-o", recording, "--preset", "Piccolo", "--hit", "0:100", "--seconds", "1" }, dir.root() / "capture").exitCode
-            == 0);
+    REQUIRE(runRenderer({ "-o", recording, "--preset", "Piccolo", "--hit", "0:100", "--seconds", "1" }, dir.root() / "capture").exitCode ==
+            0);
     const auto preset = (dir.out() / "m.snarepreset").string();
-    const auto run = runRenderer({ "--match", recording, "-o", preset, "--match-budget", std::to_string(snaresim::render::kPresetStartBudget),
-                                   "--json" },
-                                 dir.root() / "capture");
+    const auto run = runRenderer(
+        { "--match", recording, "-o", preset, "--match-budget", std::to_string(snaresim::render::kPresetStartBudget), "--json" },
+        dir.root() / "capture");
     INFO("stderr: " << run.err);
     REQUIRE(run.exitCode == 0);
     const auto json = parseJson(run.out);
@@ -312,8 +312,8 @@ TEST_CASE("match: without --preset and --match-params the search starts from the
     CHECK(parameterOf(json, "shell_depth") == Approx(0.076)); // not searched: Piccolo's, not the default 0.14 m
 
     // With --match-params, or a smaller budget, the search starts from the defaults.
-    for (const auto& extra : std::vector<std::vector<std::string>> { { "--match-params", "damping", "--match-budget", "60" },
-                                                                     { "--match-budget", "59" } })
+    for (const auto& extra :
+         std::vector<std::vector<std::string>> { { "--match-params", "damping", "--match-budget", "60" }, { "--match-budget", "59" } })
     {
         std::vector<std::string> args { "--match", recording, "-o", preset, "--json" };
         args.insert(args.end(), extra.begin(), extra.end());
@@ -330,7 +330,9 @@ TEST_CASE("match: the summary, the JSON and the preset file carry the whole-stri
     TempDir dir;
     const auto recording = matchInput(dir, "strike.wav", syntheticStrike(48000.0, 1.0)).string();
     const auto preset = dir.out() / "m.snarepreset";
-    const std::vector<std::string> args { "--match", recording, "-o", preset.string(), "--match-params", "damping", "--match-budget", "12" };
+    const std::vector<std::string> args {
+        "--match", recording, "-o", preset.string(), "--match-params", "damping", "--match-budget", "12"
+    };
 
     auto withJson = args;
     withJson.push_back("--json");
@@ -364,8 +366,7 @@ TEST_CASE("match: a SnareSim strike matched within 2 dB whole-strike distance, t
     REQUIRE(runRenderer({ "-o", recording, "--hit", "0:84", "--seconds", "1", "--set", "batter_tension=4200", "--set", "damping=40",
                           "--set", "snare_tension=50", "--set", "strike_position=0.5" },
                         dir.root() / "capture")
-                .exitCode
-            == 0);
+                .exitCode == 0);
 
     const auto preset = dir.out() / "match.snarepreset";
     const auto start = std::chrono::steady_clock::now();
@@ -378,8 +379,8 @@ TEST_CASE("match: a SnareSim strike matched within 2 dB whole-strike distance, t
     const auto json = parseJson(run.out);
     const double printed_dB = json["strike_distance_db"];
     const int velocity = json["velocity"];
-    WARN("whole-strike distance " << printed_dB << " dB at velocity " << velocity << " (distance " << (double) json["distance"]
-                                  << ") in " << (int) json["renders"] << " renders, " << seconds << " s");
+    WARN("whole-strike distance " << printed_dB << " dB at velocity " << velocity << " (distance " << (double) json["distance"] << ") in "
+                                  << (int) json["renders"] << " renders, " << seconds << " s");
     CHECK(printed_dB < 2.0);
     CHECK((int) json["renders"] <= 120);
 
@@ -387,10 +388,9 @@ TEST_CASE("match: a SnareSim strike matched within 2 dB whole-strike distance, t
     const auto again = dir.out() / "again.wav";
     REQUIRE(runRenderer({ "--preset", preset.string(), "--hit", "0:" + std::to_string(velocity), "--seconds", "1", "-o", again.string() },
                         dir.root() / "capture")
-                .exitCode
-            == 0);
-    const auto measured = runRenderer({ "--distance", again.string(), "--ref", dir.in().string() + ":truth.wav", "--json" },
-                                      dir.root() / "capture");
+                .exitCode == 0);
+    const auto measured =
+        runRenderer({ "--distance", again.string(), "--ref", dir.in().string() + ":truth.wav", "--json" }, dir.root() / "capture");
     INFO("stderr: " << measured.err);
     REQUIRE(measured.exitCode == 0);
     const double measured_dB = parseJson(measured.out)["strikes"][0]["distance_db"];
@@ -406,11 +406,16 @@ TEST_CASE("match: the same command writes the same preset file, another seed sea
     const auto recording = (dir.in() / "strike.wav").string();
     REQUIRE(runRenderer({ "-o", recording, "--hit", "0:100", "--seconds", "1", "--set", "damping=95", "--set", "batter_tension=3000" },
                         dir.root() / "capture")
-                .exitCode
-            == 0);
+                .exitCode == 0);
     auto presetWith = [&](const std::vector<std::string>& more) {
-        std::vector<std::string> args { "--match", recording, "-o", (dir.out() / "m.snarepreset").string(), "--match-budget", "16",
-                                        "--match-params", "batter_tension,damping,snare_tension" };
+        std::vector<std::string> args { "--match",
+                                        recording,
+                                        "-o",
+                                        (dir.out() / "m.snarepreset").string(),
+                                        "--match-budget",
+                                        "16",
+                                        "--match-params",
+                                        "batter_tension,damping,snare_tension" };
         args.insert(args.end(), more.begin(), more.end());
         REQUIRE(runRenderer(args, dir.root() / "capture").exitCode == 0);
         return readText(dir.out() / "m.snarepreset");

@@ -72,9 +72,9 @@ TEST_CASE("hits: --hit renders a mono float WAV of the asked length and rate", "
     // 44.1 / 48 kHz, which the engine must always accept (lower ones depend on its grid rules).
     SECTION("48 kHz, two hits")
     {
-        const auto run = runRenderer({ "-o", wav.string(), "--hit", "0:100", "--hit", "0.5:60",
-                                       "--seconds", "0.6", "--sample-rate", "48000" },
-                                     dir.root() / "capture");
+        const auto run =
+            runRenderer({ "-o", wav.string(), "--hit", "0:100", "--hit", "0.5:60", "--seconds", "0.6", "--sample-rate", "48000" },
+                        dir.root() / "capture");
         const auto samples = requireGoodWav(run, wav, 48000.0, 28800);
 
         // The second hit, at sample 24000 exactly, brings the level up again.
@@ -89,22 +89,20 @@ TEST_CASE("hits: --hit renders a mono float WAV of the asked length and rate", "
 
     SECTION("default sample rate: 48 kHz")
     {
-        const auto run = runRenderer({ "-o", wav.string(), "--hit", "0:127", "--seconds", "0.1" },
-                                     dir.root() / "capture");
+        const auto run = runRenderer({ "-o", wav.string(), "--hit", "0:127", "--seconds", "0.1" }, dir.root() / "capture");
         requireGoodWav(run, wav, 48000.0, 4800);
     }
 
     SECTION("default length: 2 s")
     {
-        const auto run = runRenderer({ "-o", wav.string(), "--hit", "0:127", "--sample-rate", "44100" },
-                                     dir.root() / "capture");
+        const auto run = runRenderer({ "-o", wav.string(), "--hit", "0:127", "--sample-rate", "44100" }, dir.root() / "capture");
         requireGoodWav(run, wav, 44100.0, 88200);
     }
 
     SECTION("44.1 kHz, a length that is not a whole number of samples")
     {
-        const auto run = runRenderer({ "--hit=0.01:90", "--seconds=0.30001", "--sample-rate=44100", "--output", wav.string() },
-                                     dir.root() / "capture");
+        const auto run =
+            runRenderer({ "--hit=0.01:90", "--seconds=0.30001", "--sample-rate=44100", "--output", wav.string() }, dir.root() / "capture");
         requireGoodWav(run, wav, 44100.0, std::llround(0.30001 * 44100.0));
     }
 
@@ -112,9 +110,8 @@ TEST_CASE("hits: --hit renders a mono float WAV of the asked length and rate", "
     {
         const auto& presets = snaresim::factoryPresets();
         REQUIRE(! presets.empty());
-        const auto run = runRenderer({ "-o", wav.string(), "--hit", "0:100", "--seconds", "0.25",
-                                       "--sample-rate", "44100", "--preset", std::string(presets.back().name),
-                                       "--set", "mallet_mass=0.02", "--set", "output_gain=-6" },
+        const auto run = runRenderer({ "-o", wav.string(), "--hit", "0:100", "--seconds", "0.25", "--sample-rate", "44100", "--preset",
+                                       std::string(presets.back().name), "--set", "mallet_mass=0.02", "--set", "output_gain=-6" },
                                      dir.root() / "capture");
         requireGoodWav(run, wav, 44100.0, 11025);
     }
@@ -127,9 +124,9 @@ TEST_CASE("json: --json prints one JSON object with the render statistics", "[re
 {
     TempDir dir;
     const auto wav = dir.out() / "a.wav";
-    const auto run = runRenderer({ "-o", wav.string(), "--hit", "0:100", "--hit", "0.1:80", "--seconds", "0.4",
-                                   "--sample-rate", "44100", "--json" },
-                                 dir.root() / "capture");
+    const auto run =
+        runRenderer({ "-o", wav.string(), "--hit", "0:100", "--hit", "0.1:80", "--seconds", "0.4", "--sample-rate", "44100", "--json" },
+                    dir.root() / "capture");
     INFO("stdout: " << run.out << "\nstderr: " << run.err);
     REQUIRE(run.exitCode == 0);
     CHECK(run.err.empty());
@@ -137,8 +134,8 @@ TEST_CASE("json: --json prints one JSON object with the render statistics", "[re
 
     const auto json = parseJson(run.out);
     REQUIRE(json.isObject());
-    for (const char* key : { "seconds_rendered", "wall_seconds", "realtime_factor", "peak", "rms",
-                             "nonfinite_samples", "sample_rate", "output" })
+    for (const char* key :
+         { "seconds_rendered", "wall_seconds", "realtime_factor", "peak", "rms", "nonfinite_samples", "sample_rate", "output" })
     {
         INFO("key " << key);
         CHECK(json.hasProperty(key));
@@ -151,8 +148,7 @@ TEST_CASE("json: --json prints one JSON object with the render statistics", "[re
     CHECK(number(json, "rms") > 0.0);
     CHECK(number(json, "rms") <= number(json, "peak"));
     CHECK(number(json, "wall_seconds") > 0.0);
-    CHECK(number(json, "realtime_factor")
-          == Approx(number(json, "seconds_rendered") / number(json, "wall_seconds")).epsilon(1e-6));
+    CHECK(number(json, "realtime_factor") == Approx(number(json, "seconds_rendered") / number(json, "wall_seconds")).epsilon(1e-6));
     CHECK(number(json, "strikes") == 2.0);
     CHECK(json["output"].toString().toStdString() == fs::absolute(wav).string());
     CHECK(! json.hasProperty("energy_relative_drift_max"));
@@ -168,8 +164,8 @@ TEST_CASE("json: --json prints one JSON object with the render statistics", "[re
     // in-process with the same strikes (samples 0 and 4410).
     const auto config = snaresim::makeDrumConfig(snaresim::ParameterSet {}, 44100.0);
     const auto engine = playInProcess(config, { { 0, 100 }, { 4410, 80 } }, 17640);
-    INFO("engine: " << engine.stats.maxIterations << " Newton iterations at most, penetration "
-                    << engine.stats.maxSnarePenetration_m << " m, peak " << engine.peak << ", rms " << engine.rms);
+    INFO("engine: " << engine.stats.maxIterations << " Newton iterations at most, penetration " << engine.stats.maxSnarePenetration_m
+                    << " m, peak " << engine.peak << ", rms " << engine.rms);
     CHECK(number(json, "solver_max_iterations") == engine.stats.maxIterations);
     CHECK(number(json, "solver_max_iterations") >= 1.0); // the mallets' contact is solved by Newton
     // The quadratised snare solve (the default) is one linear solve per step: no iteration.
@@ -202,9 +198,8 @@ TEST_CASE("lossless: --lossless --json reports an energy balance drift below 1e-
     TempDir dir;
     const auto wav = dir.out() / "lossless.wav";
     const auto csv = dir.out() / "lossless.csv";
-    const auto run = runRenderer({ "-o", wav.string(), "--hit", "0:127", "--hit", "0.05:100", "--seconds", "0.3",
-                                   "--sample-rate", "44100", "--lossless", "--json", "--energy-csv", csv.string(),
-                                   "--set", "head_precision=double" },
+    const auto run = runRenderer({ "-o", wav.string(), "--hit", "0:127", "--hit", "0.05:100", "--seconds", "0.3", "--sample-rate", "44100",
+                                   "--lossless", "--json", "--energy-csv", csv.string(), "--set", "head_precision=double" },
                                  dir.root() / "capture");
     INFO("stdout: " << run.out << "\nstderr: " << run.err);
     REQUIRE(run.exitCode == 0);
@@ -251,9 +246,8 @@ TEST_CASE("lossless: single-precision heads hold the energy balance to float rou
 {
     // 2^-24 per step, a random walk over the 13 230 steps: 2^-24 sqrt(13230) = 6.9e-6.
     TempDir dir;
-    const auto run = runRenderer({ "-o", (dir.out() / "lossless.wav").string(), "--hit", "0:127", "--hit", "0.05:100",
-                                   "--seconds", "0.3", "--sample-rate", "44100", "--lossless", "--json", "--set",
-                                   "head_precision=single" },
+    const auto run = runRenderer({ "-o", (dir.out() / "lossless.wav").string(), "--hit", "0:127", "--hit", "0.05:100", "--seconds", "0.3",
+                                   "--sample-rate", "44100", "--lossless", "--json", "--set", "head_precision=single" },
                                  dir.root() / "capture");
     INFO("stdout: " << run.out << "\nstderr: " << run.err);
     REQUIRE(run.exitCode == 0);
@@ -299,9 +293,8 @@ TEST_CASE("midi: --midi renders the note-ons of a Standard MIDI file, tempo map 
 
     SECTION("length: last note-on + 2 s")
     {
-        const auto run = runRenderer({ "-o", wav.string(), "--midi", midiPath.string(), "--sample-rate", "44100",
-                                       "--json" },
-                                     dir.root() / "capture");
+        const auto run =
+            runRenderer({ "-o", wav.string(), "--midi", midiPath.string(), "--sample-rate", "44100", "--json" }, dir.root() / "capture");
         requireGoodWav(run, wav, 44100.0, std::llround(2.3 * 44100.0));
 
         const auto json = parseJson(run.out);
@@ -312,9 +305,9 @@ TEST_CASE("midi: --midi renders the note-ons of a Standard MIDI file, tempo map 
 
     SECTION("--seconds cuts it short; later note-ons are not played")
     {
-        const auto run = runRenderer({ "-o", wav.string(), "--midi", midiPath.string(), "--sample-rate", "44100",
-                                       "--seconds", "0.2", "--json" },
-                                     dir.root() / "capture");
+        const auto run =
+            runRenderer({ "-o", wav.string(), "--midi", midiPath.string(), "--sample-rate", "44100", "--seconds", "0.2", "--json" },
+                        dir.root() / "capture");
         requireGoodWav(run, wav, 44100.0, 8820);
 
         const auto json = parseJson(run.out);
@@ -334,8 +327,8 @@ TEST_CASE("energy csv: --energy-csv writes the header and one row per sample", "
     const long long length = 4410; // 0.1 s
 
     // The heads in double precision: the balance below is then constant to double round-off.
-    const auto run = runRenderer({ "-o", wav.string(), "--energy-csv", csv.string(), "--hit", "0.01:100",
-                                   "--seconds", "0.1", "--sample-rate", "44100", "--set", "head_precision=double" },
+    const auto run = runRenderer({ "-o", wav.string(), "--energy-csv", csv.string(), "--hit", "0.01:100", "--seconds", "0.1",
+                                   "--sample-rate", "44100", "--set", "head_precision=double" },
                                  dir.root() / "capture");
     requireGoodWav(run, wav, rate, length);
     REQUIRE(fs::is_regular_file(csv));
@@ -343,8 +336,7 @@ TEST_CASE("energy csv: --energy-csv writes the header and one row per sample", "
     const auto rows = lines(readText(csv));
     REQUIRE(rows.size() == (std::size_t) length + 1);
     // The ledger's terms (the default drum's six: the outside air's too), their total, and the balance terms.
-    CHECK(rows.front()
-          == "time_s,batter_J,carry_J,mallets_J,snares_J,cavity_J,outside_J,total_J,dissipated_J,injected_J,balance_J");
+    CHECK(rows.front() == "time_s,batter_J,carry_J,mallets_J,snares_J,cavity_J,outside_J,total_J,dissipated_J,injected_J,balance_J");
     const auto columns = energyColumns(rows.front());
 
     double maxTotal = 0.0, firstBalance = 0.0, maxDeviation = 0.0;
@@ -370,20 +362,20 @@ TEST_CASE("energy csv: --energy-csv writes the header and one row per sample", "
         for (const auto t : columns.terms)
             sum += fields[t];
         CHECK(fields[columns.total] == Approx(sum)); // total
-        CHECK(fields[columns.balance]
-              == Approx(fields[columns.total] + fields[columns.dissipated] - fields[columns.injected]).margin(1e-12));
+        CHECK(fields[columns.balance] ==
+              Approx(fields[columns.total] + fields[columns.dissipated] - fields[columns.injected]).margin(1e-12));
 
         maxTotal = std::max(maxTotal, fields[columns.total]);
         if (i == 1)
             firstBalance = fields[columns.balance];
         maxDeviation = std::max(maxDeviation, std::abs(fields[columns.balance] - firstBalance));
     }
-    CHECK(maxTotal > 0.0);                       // the strike put energy in:
+    CHECK(maxTotal > 0.0); // the strike put energy in:
     // the mallet's (1/2) M v^2 at velocity 100, less what the first step's losses took (1e-6 of it)
     const snaresim::ParameterSet defaults;
     const double v = snaresim::strikeSpeedFromVelocity(100, defaults.get(snaresim::ParamId::strikeSpeedMax));
     CHECK(maxTotal == Approx(0.5 * defaults.get(snaresim::ParamId::malletMass) * v * v).epsilon(1e-5));
-    CHECK(maxDeviation <= 1.0e-9 * maxTotal);    // balance constant (lossy run)
+    CHECK(maxDeviation <= 1.0e-9 * maxTotal); // balance constant (lossy run)
 
     CHECK(entries(dir.out()) == std::vector<std::string> { "e.csv", "e.wav" });
 }
@@ -393,9 +385,9 @@ TEST_CASE("energy terms: the CSV's columns and the JSON's energy_max_J are the e
     TempDir dir;
     const auto wav = dir.out() / "terms.wav";
     const auto csv = dir.out() / "terms.csv";
-    const auto run = runRenderer({ "-o", wav.string(), "--energy-csv", csv.string(), "--hit", "0:110", "--seconds",
-                                   "0.05", "--sample-rate", "44100", "--json" },
-                                 dir.root() / "capture");
+    const auto run = runRenderer(
+        { "-o", wav.string(), "--energy-csv", csv.string(), "--hit", "0:110", "--seconds", "0.05", "--sample-rate", "44100", "--json" },
+        dir.root() / "capture");
     INFO("stdout: " << run.out << "\nstderr: " << run.err);
     REQUIRE(run.exitCode == 0);
 
@@ -497,9 +489,9 @@ TEST_CASE("the air box renders its air microphones, one channel each", "[rendere
     TempDir dir;
     const auto wav = dir.out() / "box.wav";
     // Default microphones: close top, bottom, far; a short render at 22.05 kHz.
-    auto run = runRenderer({ "-o", wav.string(), "--hit", "0:110", "--seconds", "0.03", "--sample-rate", "22050",
-                             "--model", "airbox", "--json" },
-                           dir.root() / "capture");
+    auto run =
+        runRenderer({ "-o", wav.string(), "--hit", "0:110", "--seconds", "0.03", "--sample-rate", "22050", "--model", "airbox", "--json" },
+                    dir.root() / "capture");
     REQUIRE(run.exitCode == 0);
     CHECK(run.out.find("\"mic\": \"air\"") != std::string::npos);
     auto data = readWav(wav);

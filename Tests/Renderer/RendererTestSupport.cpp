@@ -96,8 +96,7 @@ RunResult waitForRenderer(int pid, const fs::path& captureDir)
     return result;
 }
 
-RunResult runRenderer(const std::vector<std::string>& args, const fs::path& captureDir,
-                      const std::vector<std::string>& environment)
+RunResult runRenderer(const std::vector<std::string>& args, const fs::path& captureDir, const std::vector<std::string>& environment)
 {
     return waitForRenderer(startRenderer(args, captureDir, environment), captureDir);
 }
@@ -153,10 +152,7 @@ PngData readPng(const fs::path& file)
     return data;
 }
 
-juce::Image loadImage(const fs::path& file)
-{
-    return juce::ImageFileFormat::loadFrom(juce::File(fs::absolute(file).string()));
-}
+juce::Image loadImage(const fs::path& file) { return juce::ImageFileFormat::loadFrom(juce::File(fs::absolute(file).string())); }
 
 int distinctColours(const fs::path& file, int x, int y, int width, int height, int limit)
 {
@@ -263,8 +259,7 @@ void requirePicture(const fs::path& file, int width, int height)
     CHECK(distinctColours(file, 0, 0, png.width, png.height) > 1);
 }
 
-EngineRun playInProcess(const snaresim::DrumConfig& config, const std::vector<std::pair<long long, int>>& strikes,
-                        long long numSamples)
+EngineRun playInProcess(const snaresim::DrumConfig& config, const std::vector<std::pair<long long, int>>& strikes, long long numSamples)
 {
     EngineRun run;
     snaresim::Drum drum(config);

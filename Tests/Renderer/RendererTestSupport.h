@@ -20,7 +20,7 @@ namespace fs = std::filesystem;
 
 struct RunResult
 {
-    int exitCode = -1;   // -1: did not exit normally
+    int exitCode = -1; // -1: did not exit normally
     std::string out;
     std::string err;
 };
@@ -46,8 +46,7 @@ private:
 // Runs snaresim-render with these arguments (no shell), capturing stdout and stderr. Its
 // environment is this process's with `environment` laid over it: "NAME=VALUE" sets NAME,
 // "NAME" alone removes it.
-RunResult runRenderer(const std::vector<std::string>& args, const fs::path& captureDir,
-                      const std::vector<std::string>& environment = {});
+RunResult runRenderer(const std::vector<std::string>& args, const fs::path& captureDir, const std::vector<std::string>& environment = {});
 
 // The same in two halves: start it, then wait for it to end.
 int startRenderer(const std::vector<std::string>& args, const fs::path& captureDir,
@@ -65,7 +64,7 @@ struct WavData
     int bitsPerSample = 0;
     bool floatingPoint = false;
     long long length = 0;
-    std::vector<float> samples; // channel 0
+    std::vector<float> samples;                     // channel 0
     std::vector<std::vector<float>> channelSamples; // every channel
 };
 
@@ -73,7 +72,7 @@ WavData readWav(const fs::path& file);
 
 struct PngData
 {
-    bool loaded = false;      // juce::ImageFileFormat::loadFrom gave an image
+    bool loaded = false;       // juce::ImageFileFormat::loadFrom gave an image
     bool pngSignature = false; // the file starts with the PNG signature
     int width = 0;
     int height = 0;
@@ -124,8 +123,7 @@ struct EngineRun
     double peak = 0.0;
     double rms = 0.0;
 };
-EngineRun playInProcess(const snaresim::DrumConfig& config, const std::vector<std::pair<long long, int>>& strikes,
-                        long long numSamples);
+EngineRun playInProcess(const snaresim::DrumConfig& config, const std::vector<std::pair<long long, int>>& strikes, long long numSamples);
 
 // Runs the renderer with exactly these arguments and checks the bad-input contract: exit 2,
 // one line on stderr starting with "snaresim-render: error: " and naming `mentions`, nothing

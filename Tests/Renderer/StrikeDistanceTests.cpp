@@ -36,7 +36,7 @@ std::vector<double> strike(double rate, double seconds, const std::vector<std::p
                            double delay_s = 0.0, double noise = 0.0)
 {
     const double a = dbPerSecond / (20.0 * std::log10(std::numbers::e));
-    std::vector<double> x((std::size_t) (seconds * rate), 0.0);
+    std::vector<double> x((std::size_t)(seconds * rate), 0.0);
     std::mt19937_64 rng(7);
     std::normal_distribution<double> gauss;
     for (std::size_t i = 0; i < x.size(); ++i)
@@ -123,8 +123,10 @@ TEST_CASE("strike distance: the reference's figures on the recorded snare drums"
     } pairs[] {
         { "ForzeeStereo/Snare-0.wav", "ForzeeStereo/Snare-1.wav", 2.8126 },
         { "ForzeeStereo/Snare-2.wav", "ForzeeStereo/SnareOff-2.wav", 12.3510 },
-        { "ColomboAcousticDrumkit/snare-opaque-normal-mic-normal_shot2.flac", "ColomboAcousticDrumkit/snare-opaque-normal-mic-normal_shot3.flac", 2.8880 },
-        { "ColomboAcousticDrumkit/snare-opaque-2mics_normal-shot1.flac", "ColomboAcousticDrumkit/snare-opaque-normal-mic-rimshot6.flac", 8.4093 },
+        { "ColomboAcousticDrumkit/snare-opaque-normal-mic-normal_shot2.flac",
+          "ColomboAcousticDrumkit/snare-opaque-normal-mic-normal_shot3.flac", 2.8880 },
+        { "ColomboAcousticDrumkit/snare-opaque-2mics_normal-shot1.flac", "ColomboAcousticDrumkit/snare-opaque-normal-mic-rimshot6.flac",
+          8.4093 },
         { "BJA_Pacific/SN_01.aiff", "BJA_Pacific/SN3_04.aiff", 9.3650 },
         { "BJA_Pacific/SN3_04.aiff", "ColomboAcousticDrumkit/snare-opaque-normal-mic-normal_shot2.flac", 4.9584 },
         { "BJA_Pacific/SN3_03.aiff", "BJA_Pacific/SN_05.aiff", 10.9371 },
@@ -172,8 +174,8 @@ TEST_CASE("strike distance: --distance names the nearest recording with the refe
     }
     TempDir dir;
     const auto run = runRenderer({ "--distance", (kKits / "Millo-Drums_v.1/snare1.flac").string(), "--ref",
-                                   (kKits / "ForzeeStereo").string() + ":Snare-*.wav", "--ref", (kKits / "BJA_Pacific").string() + ":SN3_*.aiff",
-                                   "--json" },
+                                   (kKits / "ForzeeStereo").string() + ":Snare-*.wav", "--ref",
+                                   (kKits / "BJA_Pacific").string() + ":SN3_*.aiff", "--json" },
                                  dir.root() / "capture");
     INFO(run.err);
     REQUIRE(run.exitCode == 0);
@@ -210,11 +212,12 @@ TEST_CASE("strike distance: zero to itself, symmetric, blind to level and to the
     CHECK(distance(fa, fingerprintOf(quiet, rate)) < 1e-9);
 
     // The onset is found: the same strike after 0.1 s or 0.35 s of silence.
-    const auto early = strike(rate, 1.0, { { 700.0, 0.5 } }, 50.0, 0.1, 0.3), late = strike(rate, 1.25, { { 700.0, 0.5 } }, 50.0, 0.35, 0.3);
+    const auto early = strike(rate, 1.0, { { 700.0, 0.5 } }, 50.0, 0.1, 0.3),
+               late = strike(rate, 1.25, { { 700.0, 0.5 } }, 50.0, 0.35, 0.3);
     CHECK(distance(fingerprintOf(early, rate), fingerprintOf(late, rate)) < 1e-9);
     // ... and moved by 5 ms against its own windows, it is another fingerprint.
     auto shifted = a;
-    shifted.erase(shifted.begin() + (std::ptrdiff_t) (0.021 * rate), shifted.begin() + (std::ptrdiff_t) (0.026 * rate));
+    shifted.erase(shifted.begin() + (std::ptrdiff_t)(0.021 * rate), shifted.begin() + (std::ptrdiff_t)(0.026 * rate));
     CHECK(distance(fa, fingerprintOf(shifted, rate)) > 0.05);
 }
 
@@ -323,7 +326,8 @@ TEST_CASE("strike distance: --distance reads WAV and AIFF alike, channels averag
     CHECK((double) fromStereo["strikes"][0]["distances_db"][0] > 0.5);
 
     // Text: per strike, its nearest, then one line per recording; two strikes in order.
-    const auto run = runRenderer({ "--distance", aiff.string(), "--distance", (dir.in() / "b.wav").string(), "--ref", kit }, dir.root() / "capture");
+    const auto run =
+        runRenderer({ "--distance", aiff.string(), "--distance", (dir.in() / "b.wav").string(), "--ref", kit }, dir.root() / "capture");
     REQUIRE(run.exitCode == 0);
     const auto text = lines(run.out);
     REQUIRE(text.size() == 8);

@@ -29,11 +29,11 @@ using namespace snaresim::render;
 namespace
 {
 
-std::vector<double> decaying(double rate, double seconds, const std::vector<double>& freqs, double dbPerSecond,
-                             double delay_s = 0.0, double noise = 0.0)
+std::vector<double> decaying(double rate, double seconds, const std::vector<double>& freqs, double dbPerSecond, double delay_s = 0.0,
+                             double noise = 0.0)
 {
     const double a = dbPerSecond / (20.0 * std::log10(std::numbers::e));
-    std::vector<double> x((std::size_t) (seconds * rate), 0.0);
+    std::vector<double> x((std::size_t)(seconds * rate), 0.0);
     std::mt19937_64 rng(1);
     std::normal_distribution<double> gauss;
     for (std::size_t i = 0; i < x.size(); ++i)
@@ -128,7 +128,7 @@ TEST_CASE("spectral envelope: level-normalised, in the sine's band, falling with
     for (int t = 0; t + 1 < SpectralEnvelope::kFrames; ++t)
     {
         CHECK(a.at(t, band) - a.at(t + 1, band) == Approx(1.0).margin(0.05)); // 100 dB/s: 1 dB a frame
-        CHECK(a.at(t, band) > a.at(t, band - 3) + 10.0); // an octave down: at the floor, 45 dB below the loudest
+        CHECK(a.at(t, band) > a.at(t, band - 3) + 10.0);                      // an octave down: at the floor, 45 dB below the loudest
     }
 
     // A strike an eighth of an octave higher is further than the same strike, nearer than an octave.
@@ -146,8 +146,8 @@ TEST_CASE("match distance: zero for the same strike, growing with the difference
     double last = 0.0;
     for (const double ratio : { 1.02, 1.06, 1.2 })
     {
-        const auto other = strikeSignature(decaying(rate, 0.6, { 200.0 * ratio, 330.0 * ratio, 2500.0 * ratio }, 60.0, 0.0, 1e-4),
-                                           rate, StrikeRules::render);
+        const auto other = strikeSignature(decaying(rate, 0.6, { 200.0 * ratio, 330.0 * ratio, 2500.0 * ratio }, 60.0, 0.0, 1e-4), rate,
+                                           StrikeRules::render);
         const auto d = matchDistance(base, other);
         CHECK(d.total > last);
         CHECK(d.z[5] == Approx(4.0 * std::tanh(12.0 * std::log2(ratio))).margin(0.05)); // the lowest peak, semitones
@@ -179,16 +179,15 @@ TEST_CASE("strike features: the same as scripts/snare_features.py on the same sa
     // Three modes, their own decays, noise and a lead-in, 24-bit stereo at 44.1 kHz and float at 48 kHz.
     for (const double rate : { 44100.0, 48000.0 })
     {
-        std::vector<double> x((std::size_t) (1.2 * rate), 0.0);
+        std::vector<double> x((std::size_t)(1.2 * rate), 0.0);
         std::mt19937_64 rng(7);
         std::normal_distribution<double> gauss;
         for (std::size_t i = 0; i < x.size(); ++i)
         {
             const double t = (double) i / rate - 0.05;
             if (t >= 0.0)
-                x[i] = 0.5 * std::exp(-9.0 * t) * std::sin(2.0 * std::numbers::pi * 187.0 * t)
-                       + 0.3 * std::exp(-15.0 * t) * std::sin(2.0 * std::numbers::pi * 341.0 * t)
-                       + 0.2 * std::exp(-40.0 * t) * gauss(rng);
+                x[i] = 0.5 * std::exp(-9.0 * t) * std::sin(2.0 * std::numbers::pi * 187.0 * t) +
+                       0.3 * std::exp(-15.0 * t) * std::sin(2.0 * std::numbers::pi * 341.0 * t) + 0.2 * std::exp(-40.0 * t) * gauss(rng);
             x[i] += 1e-4 * gauss(rng) + 0.01; // a noise floor and a DC offset
         }
         const auto dir = std::filesystem::temp_directory_path() / ("snaresim-features-" + std::to_string((int) rate) + ".wav");
@@ -218,7 +217,8 @@ TEST_CASE("strike features: the same as scripts/snare_features.py on the same sa
         CHECK(mine.onset_s() == Approx(number(theirs["onset_s"])).margin(1e-9));
         CHECK(*mine.tailCentroid_Hz == Approx(number(theirs["tail_centroid_hz"])).epsilon(1e-6));
         for (std::size_t b = 0; b < kShareBandNames.size(); ++b)
-            CHECK(mine.bandShares[b] == Approx(number(theirs["band_shares"][juce::Identifier(std::string(kShareBandNames[b]))])).margin(1e-9));
+            CHECK(mine.bandShares[b] ==
+                  Approx(number(theirs["band_shares"][juce::Identifier(std::string(kShareBandNames[b]))])).margin(1e-9));
         CHECK(*mine.fall20_ms == Approx(number(theirs["fall_20db_ms"])).margin(1e-6));
         CHECK(*mine.fall40_ms == Approx(number(theirs["fall_40db_ms"])).margin(1e-6));
         CHECK(*mine.lowestPeak_Hz == Approx(number(theirs["lowest_peak_hz"])).epsilon(1e-6));
