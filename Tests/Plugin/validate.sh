@@ -10,7 +10,7 @@ tool=$1 tools_dir=$2 bundle=$3
 exe="$tools_dir/$tool"
 
 if [ ! -x "$exe" ]; then
-    echo "skipped: $tool not found at $exe (see README.md, Validation)"
+    echo "skipped: $tool not found at $exe (see docs/TESTING.md, The plug-in)"
     exit 77
 fi
 [ -d "$bundle" ] || { echo "error: no plug-in bundle at $bundle" >&2; exit 1; }
