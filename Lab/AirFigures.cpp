@@ -1,4 +1,4 @@
-// The air box's figures in docs/MODEL.md (not a test; scripts/airbox_figures.py runs it).
+// The air box's figures in docs/MODEL.md (not a test; Lab/airbox_figures.py runs it).
 //
 //   airbox_figures band OUT_DIR [SECONDS] [BOX_SIDE_M]
 //       The paper's section 5.3: the struck batter alone in the box, sigma_a = 0 and 2e-6 m;
@@ -13,7 +13,7 @@
 //       off: in the cavity alone, with the outside air, and in the air box (absorbing walls).
 //   airbox_figures modes-model Mm Rm Md Rd Ms Rs Mt Rt ANTI_NEAR [MODES_UP_TO_HZ]
 //       The same for the cavity with outside air of the given channels (the calibration's
-//       inner loop, scripts/calibrate_outside_air.py), and the cavity's modes up to a frequency.
+//       inner loop, Lab/calibrate_outside_air.py), and the cavity's modes up to a frequency.
 //   airbox_figures whole-drum [STIFFNESS MASS_KG] [same-grids] [coarser=F] [no-near-field] [modes=HZ]
 //       The whole real-time drum (cavity and outside air) against the 1.3 m air box at the three
 //       microphones, octave bands of 300 ms (the microphones' test's drum and strike), with the

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Fit the outside air's six radiation channels (Source/Engine/OutsideAir.h) to the air box.
+"""Fit the outside air's six radiation channels (Source/Physics/OutsideAir.h) to the air box.
 
 The reduced drum (the cavity with outside air) and the drum in the air box are measured alike by
 build/Lab/airbox_figures (modes / modes-model): the heads' (0,1) pair in phase and
@@ -7,7 +7,7 @@ anti-phase and each head's (1,1) mode, frequency and decay rate, lossless heads,
 script takes the air box's eight figures (from `airbox_figures modes SIDE`) and moves the four
 channel pairs (mass M, resistance R: monopole, dipole, tilt sum, tilt difference) by damped
 Gauss-Newton steps on the logarithms until the reduced drum gives the same figures; it prints
-each step and the values to put into OutsideAirSpec (Source/Engine/DrumConfig.h).
+each step and the values to put into OutsideAirSpec (Source/Physics/OutsideAirSpec.h).
 
 usage: calibrate_outside_air.py F_IN D_IN F_ANTI D_ANTI F_B11 D_B11 F_C11 D_C11
                                 [--start Mm Rm Md Rd Ms Rs Mt Rt] [--steps N] [--modes-up-to HZ]

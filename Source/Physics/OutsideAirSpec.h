@@ -17,7 +17,7 @@ struct RadiationChannelSpec
 struct OutsideAirSpec
 {
     bool enabled = false; // from the schema
-    // scripts/calibrate_outside_air.py against the 1.4 m and 1.8 m air boxes (docs/MODEL.md)
+    // Lab/calibrate_outside_air.py against the 1.4 m and 1.8 m air boxes (docs/MODEL.md)
     RadiationChannelSpec monopole { 1.311, 1.418e4 }; // V_b - V_c: the volume pushed out
     RadiationChannelSpec dipole { 1.294, 6.579e4 };   // V_b + V_c: the volume carried through
     RadiationChannelSpec tiltSum { 251.8, 3.185e7 };  // X_b + X_c: both heads' first moments together
