@@ -119,6 +119,7 @@ public:
     // Energy bookkeeping, computed every step while enabled (costs about one extra pass): one
     // term per entry of energyTerms() (batter, carry, mallets, snares, cavity), in that order.
     void setEnergyTracking(bool on) { trackEnergy = on; }
+    bool energyTracking() const noexcept { return trackEnergy; }
     const EnergyLedger& energy() const { return ledger; }
 
     const SolverStats& solverStats() const { return stats; }

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <stdexcept>
 #include <utility>
 
 namespace snaresim
@@ -50,7 +51,7 @@ double DrumPlayer::Ramp::skip(int numSamples) noexcept
 }
 
 //==============================================================================
-DrumPlayer::DrumPlayer(ModelBuilder::ParameterReader readParameters) : builder(std::move(readParameters))
+DrumPlayer::DrumPlayer(ModelBuilder::ParameterReader readParameters, BuildOptions options) : builder(std::move(readParameters), options)
 {
     for (const auto& spec : parameterSpecs())
         smoothed[static_cast<std::size_t>(spec.id)] = spec.kind == ParamKind::continuous && ! spec.rebuildsModel();
@@ -68,7 +69,7 @@ DrumPlayer::~DrumPlayer()
 
 DrumPlayer::Preparation::~Preparation() = default;
 
-DrumPlayer::Preparation DrumPlayer::prepare(double sampleRate, const ParameterSet& params)
+DrumPlayer::Preparation DrumPlayer::prepare(double sampleRate, const ParameterSet& params, OnBuildFailure onFailure)
 {
     const bool usableRate = sampleRate > 0.0 && std::isfinite(sampleRate);
     const double newRate = usableRate ? sampleRate : 0.0;
@@ -92,7 +93,11 @@ DrumPlayer::Preparation DrumPlayer::prepare(double sampleRate, const ParameterSe
         {
             try
             {
-                p.fresh = buildModel(params, newRate);
+                p.fresh = buildModel(params, newRate, builder.options(), onFailure);
+            }
+            catch (const std::invalid_argument&)
+            {
+                throw; // OnBuildFailure::raise: the caller reports it
             }
             catch (const std::exception&)
             {
@@ -148,26 +153,6 @@ void DrumPlayer::start(Preparation& p) noexcept
         current->drum->reset();
 
     builder.setTargetLocked(rate, current != nullptr ? current->requested : p.key);
-}
-
-void DrumPlayer::prepareAndStart(double sampleRate, const ParameterSet& params)
-{
-    auto p = prepare(sampleRate, params);
-    start(p);
-}
-
-void DrumPlayer::startWith(std::unique_ptr<Drum> drum, const ParameterSet& params)
-{
-    const double drumRate = drum != nullptr ? drum->sampleRate() : 0.0;
-    auto p = prepare(0.0, params); // nothing is built for rate 0
-    p.fresh = std::make_unique<DrumModel>();
-    p.fresh->requested = GridKey::of(params, drumRate);
-    p.fresh->built = params;
-    p.fresh->fixed = true;
-    p.fresh->drum = std::move(drum);
-    p.key = p.fresh->requested;
-    p.keepCurrent = false;
-    start(p);
 }
 
 void DrumPlayer::releaseResources() noexcept
@@ -290,7 +275,7 @@ void DrumPlayer::advanceParameters(int numSamples) noexcept
         }
     }
 
-    if (! liveDirty || current == nullptr || current->drum == nullptr || current->fixed)
+    if (! liveDirty || current == nullptr || current->drum == nullptr)
         return;
 
     auto params = liveParameters;
@@ -300,7 +285,7 @@ void DrumPlayer::advanceParameters(int numSamples) noexcept
     params.setClamped(ParamId::snaresEngaged, snaresEngaged ? 1.0 : 0.0);
 
     auto& d = *current->drum;
-    const auto cfg = mapParameters(params, d.sampleRate());
+    const auto cfg = mapParameters(params, d.sampleRate(), builder.options());
     d.applyLive(cfg);
 
     liveDirty = false;

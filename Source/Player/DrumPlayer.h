@@ -78,8 +78,9 @@ public:
     static constexpr double smoothingSeconds = 0.03;
     static constexpr double crossfadeSeconds = 0.02;
 
-    // readParameters: what the background builder builds new models from (thread-safe).
-    explicit DrumPlayer(ModelBuilder::ParameterReader readParameters);
+    // readParameters: what the background builder builds new models from (thread-safe);
+    // options: what every model is built with besides them (BuildOptions.h).
+    explicit DrumPlayer(ModelBuilder::ParameterReader readParameters, BuildOptions options = {});
     ~DrumPlayer();
     DrumPlayer(const DrumPlayer&) = delete;
     DrumPlayer& operator=(const DrumPlayer&) = delete;
@@ -107,16 +108,10 @@ public:
         DrumPlayer* player = nullptr;
     };
 
-    Preparation prepare(double sampleRate, const ParameterSet& params);
+    // With OnBuildFailure::raise, prepare() throws std::invalid_argument when `params` cannot
+    // be built at this rate (offline clients, who report it) instead of falling back.
+    Preparation prepare(double sampleRate, const ParameterSet& params, OnBuildFailure onFailure = OnBuildFailure::fallBack);
     void start(Preparation& preparation) noexcept;
-
-    // Both at once, for hosts whose audio cannot run meanwhile (the renderer, the benchmark).
-    void prepareAndStart(double sampleRate, const ParameterSet& params);
-
-    // An offline host's own drum (the renderer's, lossless for instance), played as it was
-    // built: notes, events, the guard and the counters as always, but no parameter is applied
-    // to it. `params` are the values it was built from.
-    void startWith(std::unique_ptr<Drum> drum, const ParameterSet& params);
 
     // Silences the drums (host's callback lock held).
     void releaseResources() noexcept;

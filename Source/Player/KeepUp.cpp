@@ -217,7 +217,8 @@ void KeepUpCheck::run()
         bool finished = true;
         try
         {
-            Drum drum(makeDrumConfig(params, rate));
+            const auto built = buildDrum(params, rate);
+            Drum& drum = *built;
             if (cancel.load())
                 finished = false;
             else

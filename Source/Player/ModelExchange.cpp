@@ -6,6 +6,7 @@
 #include <cmath>
 #include <exception>
 #include <new>
+#include <stdexcept>
 
 namespace snaresim
 {
@@ -22,17 +23,28 @@ GridKey GridKey::of(const ParameterSet& params, double sampleRate) noexcept
     return key;
 }
 
-std::unique_ptr<DrumModel> buildModel(const ParameterSet& params, double sampleRate)
+std::unique_ptr<Drum> buildDrum(const ParameterSet& params, double sampleRate, const BuildOptions& options)
+{
+    auto drum = std::make_unique<Drum>(makeDrumConfig(params, sampleRate, options));
+    drum->setEnergyTracking(options.trackEnergy);
+    return drum;
+}
+
+std::unique_ptr<DrumModel> buildModel(const ParameterSet& params, double sampleRate, const BuildOptions& options, OnBuildFailure onFailure)
 {
     auto model = std::make_unique<DrumModel>();
     model->requested = GridKey::of(params, sampleRate);
 
     if (! (sampleRate > 0.0) || ! std::isfinite(sampleRate))
+    {
+        if (onFailure == OnBuildFailure::raise)
+            throw std::invalid_argument("the sample rate must be positive and finite");
         return model;
+    }
 
     try
     {
-        model->drum = std::make_unique<Drum>(makeDrumConfig(params, sampleRate));
+        model->drum = buildDrum(params, sampleRate, options);
         model->built = params;
         return model;
     }
@@ -42,6 +54,8 @@ std::unique_ptr<DrumModel> buildModel(const ParameterSet& params, double sampleR
     }
     catch (const std::exception&)
     {
+        if (onFailure == OnBuildFailure::raise)
+            throw;
         // The parameters cannot be simulated here: the defaults are tried next.
     }
 
@@ -50,7 +64,7 @@ std::unique_ptr<DrumModel> buildModel(const ParameterSet& params, double sampleR
     try
     {
         const ParameterSet defaults;
-        model->drum = std::make_unique<Drum>(makeDrumConfig(defaults, sampleRate));
+        model->drum = buildDrum(defaults, sampleRate, options);
         model->built = defaults;
     }
     catch (const std::bad_alloc&)
@@ -67,7 +81,7 @@ std::unique_ptr<DrumModel> buildModel(const ParameterSet& params, double sampleR
 }
 
 //==============================================================================
-ModelBuilder::ModelBuilder(ParameterReader reader) : readParameters(std::move(reader)) {}
+ModelBuilder::ModelBuilder(ParameterReader reader, BuildOptions options) : readParameters(std::move(reader)), buildOptions(options) {}
 
 ModelBuilder::~ModelBuilder() { stop(); }
 
@@ -104,6 +118,7 @@ void ModelBuilder::setTargetLocked(double sampleRate, const GridKey& current)
 
 void ModelBuilder::buildNowIfNeeded()
 {
+    retired.deleteAll(); // as the background thread does (which an offline client may have stopped)
     const std::lock_guard<std::mutex> g(lock);
     buildIfNeededLocked();
 }
@@ -123,7 +138,7 @@ void ModelBuilder::buildIfNeededLocked()
 
     try
     {
-        model = buildModel(params, targetRate);
+        model = buildModel(params, targetRate, buildOptions);
     }
     catch (const std::exception&)
     {

@@ -7,6 +7,7 @@
 // audio thread is done with go back to the builder thread through a small lock-free retire
 // queue and are deleted there. The audio thread never allocates, frees, locks or waits.
 
+#include "BuildOptions.h"
 #include "Drum.h"
 #include "Parameters.h"
 
@@ -38,14 +39,26 @@ struct DrumModel
     ParameterSet built;         // the values the drum was built from
     GridKey requested;          // what was asked for (differs from `built` after a fallback)
     bool fellBack = false;      // the requested values failed; built from the defaults
-    bool fixed = false;         // a host's own drum, played as built (no live parameters)
 
     double sampleRate() const noexcept { return requested.sampleRate; }
 };
 
-// Builds a model: from `params`, else from the default parameter set at that rate, else an
-// empty (silent) model. Never throws anything but std::bad_alloc. Not for the audio thread.
-std::unique_ptr<DrumModel> buildModel(const ParameterSet& params, double sampleRate);
+// The one place a Drum is built for a client: the parameters mapped at this rate
+// (makeDrumConfig), the options applied, the drum made. Throws std::invalid_argument when the
+// drum cannot be simulated so. Not for the audio thread.
+std::unique_ptr<Drum> buildDrum(const ParameterSet& params, double sampleRate, const BuildOptions& options = {});
+
+// What a model does when its parameters cannot be built.
+enum class OnBuildFailure
+{
+    fallBack, // the default parameter set at that rate, else an empty (silent) model
+    raise     // std::invalid_argument, as buildDrum (offline clients, who report it)
+};
+
+// Builds a model from `params` with buildDrum. Falling back, it never throws anything but
+// std::bad_alloc. Not for the audio thread.
+std::unique_ptr<DrumModel> buildModel(const ParameterSet& params, double sampleRate, const BuildOptions& options = {},
+                                      OnBuildFailure onFailure = OnBuildFailure::fallBack);
 
 // One slot, one pointer: whoever exchanges a pointer out owns it.
 template <typename T>
@@ -107,7 +120,7 @@ class ModelBuilder final
 public:
     using ParameterReader = std::function<ParameterSet()>; // thread-safe (reads atomics)
 
-    explicit ModelBuilder(ParameterReader readParameters);
+    explicit ModelBuilder(ParameterReader readParameters, BuildOptions options = {});
     ~ModelBuilder();
 
     void start();
@@ -126,6 +139,8 @@ public:
     // Never the audio thread.
     void buildNowIfNeeded();
 
+    const BuildOptions& options() const noexcept { return buildOptions; }
+
     AtomicSlot<DrumModel> pending;     // builder -> audio thread
     RetireQueue<DrumModel, 8> retired; // audio thread -> builder (deleted there)
 
@@ -136,6 +151,7 @@ private:
     void buildIfNeededLocked();
 
     ParameterReader readParameters;
+    const BuildOptions buildOptions;
     std::mutex lock;
     std::thread thread;
     std::mutex wakeLock;

@@ -1,8 +1,9 @@
 #pragma once
-// The SnareSim plug-in processor: JUCE's side of the drum. processBlock translates the host's
-// parameters, MIDI and buffer into calls of the engine's real-time player (DrumPlayer.h), which
-// does the smoothing, event splitting, model hand-off, guard and metering. The parameters
-// (ParameterLayout.h), the saved state (PluginState.h) and the factory programs live here.
+// The SnareSim plug-in processor: JUCE's side of the drum, an adapter onto the engine's one door
+// (DrumSession.h). processBlock hands the host's parameters, MIDI and buffer to the session,
+// which does the air-model policy, the smoothing, event splitting, model hand-off, guard and
+// metering. The parameters (ParameterLayout.h), the saved state (PluginState.h) and the factory
+// programs live here.
 // In real time processBlock never locks, allocates, frees, logs or blocks; the first block of a
 // host's offline render may build the drum that render needs (setNonRealtime).
 //
@@ -17,11 +18,13 @@
 #include <atomic>
 #include <memory>
 
-#include "DrumPlayer.h"
+#include "DrumSession.h"
 #include "KeepUp.h"
 #include "Parameters.h"
 
-class SnareSimAudioProcessor final : public juce::AudioProcessor, private juce::AsyncUpdater
+class SnareSimAudioProcessor final : public juce::AudioProcessor,
+                                     private juce::AsyncUpdater,
+                                     private juce::AudioProcessorParameter::Listener
 {
 public:
     SnareSimAudioProcessor();
@@ -65,35 +68,30 @@ public:
 
     // Message thread: copies the newest snapshot the audio thread published (about 30 per
     // second of audio) into `out`; false when nothing new was published since the last call.
-    bool pullSnapshot(snaresim::DrumSnapshot& out) { return player.pullSnapshot(out); }
+    bool pullSnapshot(snaresim::DrumSnapshot& out) { return session.drumPlayer().pullSnapshot(out); }
 
     // Share of the real-time budget the last blocks used (smoothed; 0..1, above 1 when the
     // processor cannot keep up) and the worst recent block.
-    float getCpuLoad() const noexcept { return player.cpuLoad(); }
-    float getPeakCpuLoad() const noexcept { return player.peakCpuLoad(); }
+    float getCpuLoad() const noexcept { return session.drumPlayer().cpuLoad(); }
+    float getPeakCpuLoad() const noexcept { return session.drumPlayer().peakCpuLoad(); }
     // Newton solves that missed their cap and fell back (all models since construction).
-    long getSolverFallbacks() const noexcept { return player.solverFallbacks(); }
+    long getSolverFallbacks() const noexcept { return session.drumPlayer().solverFallbacks(); }
     // Times the simulation went non-finite and was reset quietly.
-    int getNonFiniteResets() const noexcept { return player.nonFiniteResets(); }
+    int getNonFiniteResets() const noexcept { return session.drumPlayer().nonFiniteResets(); }
     // Largest number of Newton iterations of any contact solve (all models since construction).
-    int getMaxNewtonIterations() const noexcept { return player.maxNewtonIterations(); }
+    int getMaxNewtonIterations() const noexcept { return session.drumPlayer().maxNewtonIterations(); }
 
     //==============================================================================
     // For tests and tools.
 
-    // The parameter values the drum is built from (clamped into range), the air model as it
-    // plays: in a host's offline render (setNonRealtime) the air box when "Air box when
-    // bouncing" is on, else the air model; in real time the air model, except that the air box
-    // plays only once a measurement has shown that this machine keeps up with it at the prepared
-    // sample rate and block size (KeepUp.h), and the cavity meanwhile or otherwise. Quality as
-    // chosen, except that in real time with "Lower Quality when slow" on (not in the air box) a
-    // bandwidth measured too slow here gives way to the first lower rung that is not (keptUp).
-    // Thread-safe; never waits for a measurement; not for the audio thread.
-    snaresim::ParameterSet currentParameters() const;
+    // The parameter values the drum is built from: DrumSession::playedParameters (the air
+    // model as it plays, Quality as real time plays it). Thread-safe; never waits for a
+    // measurement; not for the audio thread.
+    snaresim::ParameterSet currentParameters() const { return session.playedParameters(); }
 
     // The parameters as the host holds them (clamped into range; the air model as chosen, not
     // as it plays). Any thread but the audio thread.
-    snaresim::ParameterSet parameterValues() const { return hostParameters(); }
+    snaresim::ParameterSet parameterValues() const { return session.parameters(); }
 
     // Message thread: sets every parameter of the drum to `values` (as a host's automation
     // would, one gesture each; keep_up, the machine's, stays) and builds the new model now if it
@@ -102,76 +100,58 @@ public:
 
     // True when the model playing now could not be built from the parameters and fell back
     // to the default parameter set.
-    bool usedFallbackParameters() const noexcept { return player.usedFallbackParameters(); }
+    bool usedFallbackParameters() const noexcept { return session.drumPlayer().usedFallbackParameters(); }
 
     // The air box in real time: true while the air model is the air box and the cavity plays
     // instead (not measured yet, or this machine does not keep up with it). The verdict of the
     // measurement for the parameters as they are, and the editor's line about it (empty when
     // there is nothing to say).
-    bool airBoxHeldBack() const;
-    snaresim::KeepUpCheck::Verdict airBoxVerdict() const;
-    juce::String airBoxNotice() const;
+    bool airBoxHeldBack() const { return session.airBoxHeldBack(); }
+    snaresim::KeepUpCheck::Verdict airBoxVerdict() const { return session.airBoxVerdict(); }
+    juce::String airBoxNotice() const { return session.airBoxNotice(); }
     // Measurements of the air box finished so far (for tests).
-    int airBoxMeasurements() const noexcept { return keepUp.measurementsDone(); }
+    int airBoxMeasurements() const noexcept { return session.airBoxCheck().measurementsDone(); }
 
     // Quality in real time ("Lower Quality when slow", keep_up): the bandwidth playing, the
     // verdict on the chosen one at the prepared rate and block size (none when not measured:
     // offline, switched off, or the air box plays), and the editor's line about a lower one
     // playing (empty when the chosen one plays).
-    double playingBandwidth() const noexcept { return playedBandwidth.load(); }
-    snaresim::KeepUpCheck::Verdict qualityVerdict() const;
-    juce::String qualityNotice() const;
+    double playingBandwidth() const noexcept { return session.playingBandwidth(); }
+    snaresim::KeepUpCheck::Verdict qualityVerdict() const { return session.qualityVerdict(); }
+    juce::String qualityNotice() const { return session.qualityNotice(); }
     // What the editor says about the drum that plays: the air box's line and Quality's.
-    juce::String playNotice() const;
+    juce::String playNotice() const { return session.playNotice(); }
     // Measures Quality's drums with `m` instead of timing them (tests: a slower machine). Every
     // processor made after setDefaultQualityMeasurement starts with its `m` (the test runner's).
-    void setQualityMeasurement(snaresim::KeepUpCheck::Measurement m) { qualityCheck.setMeasurement(std::move(m)); }
+    void setQualityMeasurement(snaresim::KeepUpCheck::Measurement m) { session.qualityCheck().setMeasurement(std::move(m)); }
     static void setDefaultQualityMeasurement(snaresim::KeepUpCheck::Measurement m);
-    int qualityMeasurements() const noexcept { return qualityCheck.measurementsDone(); }
+    int qualityMeasurements() const noexcept { return session.qualityCheck().measurementsDone(); }
 
     // The host renders offline (any thread; VST3 hosts call it from the audio thread).
     void setNonRealtime(bool isNonRealtime) noexcept override;
 
     // Models installed by the audio thread so far (prepareToPlay and background builds).
-    int getModelSwapCount() const noexcept { return player.modelSwapCount(); }
+    int getModelSwapCount() const noexcept { return session.drumPlayer().modelSwapCount(); }
 
     // The drum playing now (nullptr before prepareToPlay or when the rate cannot be simulated).
     // Only safe to use while processBlock is not running.
-    const snaresim::Drum* getDrum() const noexcept { return player.drum(); }
+    const snaresim::Drum* getDrum() const noexcept { return session.drumPlayer().drum(); }
 
 private:
     void handleAsyncUpdate() override;
     void applyProgram(int index);
-    snaresim::ParameterSet hostParameters() const;
-    bool playsAirBox() const noexcept; // the drum playing is in the air box (audio thread)
-    snaresim::KeepUpCheck::Verdict askKeepUp(const snaresim::ParameterSet& params) const;
-    // The air model as it plays (currentParameters), Quality as chosen.
-    snaresim::ParameterSet withAirPolicy(snaresim::ParameterSet params) const;
-    // Real time may play a lower Quality than `params` ask (keep_up on, not the air box).
-    bool lowersQuality(const snaresim::ParameterSet& params) const;
-    snaresim::KeepUpCheck::Verdict askQuality(const snaresim::ParameterSet& params) const;
-    // `params` at the bandwidth real time plays: the chosen one, or the first rung below it
-    // (each 0.8 of the one above, down to the control's least) not measured too slow.
-    snaresim::ParameterSet keptUp(snaresim::ParameterSet params) const;
+    // A host's or the editor's change of a parameter, passed on to the session (any thread).
+    void parameterValueChanged(int parameterIndex, float newValue) override;
+    void parameterGestureChanged(int, bool) override {}
+    void pushParameters() noexcept; // every parameter as the host holds it, to the session
 
     juce::AudioProcessorValueTreeState apvts;
     std::array<std::atomic<float>*, snaresim::kNumParameters> rawParameters {};
+    std::vector<std::pair<juce::RangedAudioParameter*, snaresim::ParamId>> byIndex; // the processor's parameter index -> id
 
-    // Everything between the host and the drum: smoothing, events, model hand-off, guard, meters.
-    snaresim::DrumPlayer player;
+    // The one door into the engine: parameters, air-model policy, player.
+    snaresim::DrumSession session;
     std::array<snaresim::PlayerEvent, 1024> events {}; // one block's MIDI, translated (audio thread)
-
-    // --- the air box ----------------------------------------------------------------------
-    std::atomic<bool> offline { false };      // the host renders offline (setNonRealtime)
-    std::atomic<double> preparedRate { 0.0 }; // prepareToPlay's sample rate and block size
-    std::atomic<int> preparedBlockSize { 0 };
-    mutable snaresim::KeepUpCheck keepUp;           // whether the air box keeps up in real time here
-    bool offlineInBlocks = false;                   // `offline` as processBlock last saw it (audio thread)
-    mutable std::atomic<bool> airBoxLive { false }; // real time plays the air box (it keeps up here)
-
-    // --- Quality in real time -------------------------------------------------------------
-    mutable snaresim::KeepUpCheck qualityCheck;          // whether a bandwidth keeps up here
-    mutable std::atomic<double> playedBandwidth { 0.0 }; // what currentParameters last chose
 
     // --- programs --------------------------------------------------------------------------
     std::atomic<int> currentProgram { 0 };

@@ -1,7 +1,7 @@
 #include "Benchmark.h"
 
 #include "AirSpeed.h"
-#include "DrumPlayer.h"
+#include "DrumSession.h"
 
 #include <juce_audio_basics/juce_audio_basics.h>
 
@@ -51,8 +51,8 @@ RenderJob benchmarkJob(const RenderJob& job)
     return result;
 }
 
-RenderStats benchmarkDrum(const ParameterSet& params, const DrumConfig& config, const RenderPlan& plan, int blockSize, int repeats,
-                          const std::function<void(std::span<const float>)>& audio)
+RenderStats benchmarkDrum(const ParameterSet& params, const BuildOptions& options, const DrumConfig& config, const RenderPlan& plan,
+                          int blockSize, int repeats, const std::function<void(std::span<const float>)>& audio)
 {
     using Clock = std::chrono::steady_clock;
 
@@ -61,7 +61,7 @@ RenderStats benchmarkDrum(const ParameterSet& params, const DrumConfig& config, 
 
     std::vector<float> block((std::size_t) blockSize);
     std::vector<PlayerEvent> events;
-    events.reserve(plan.strikes.size());
+    events.reserve(plan.strikes.size() + plan.changes.size());
     const auto numBlocks = (std::size_t)((plan.numSamples + blockSize - 1) / blockSize);
     std::vector<Clock::duration> fastest(numBlocks, Clock::duration::max());
     Clock::duration rawWorst {}, slowestRun {}, fastestRun = Clock::duration::max();
@@ -76,36 +76,26 @@ RenderStats benchmarkDrum(const ParameterSet& params, const DrumConfig& config, 
     for (int run = 0; run <= repeats; ++run)
     {
         const bool profiled = run == repeats;
-        // A new player and drum each run: every run computes the same blocks.
-        DrumPlayer player([&params] { return params; });
-        if (airBox)
-            player.startWith(std::make_unique<Drum>(config), params); // the air options (--threads, --box, ...) apply
-        else
-            player.prepareAndStart(plan.sampleRate_Hz, params);
-        player.stopBuilding(); // the parameters never change: nothing to build meanwhile
+        // A new session and drum each run: every run computes the same blocks.
+        DrumSession session(DrumSession::Mode::render, options);
+        session.setParameters(params);
+        session.prepareAndStart(plan.sampleRate_Hz, blockSize); // builds at its events only
+        auto& player = session.drumPlayer();
         if (player.drum() == nullptr)
             throw std::runtime_error("the drum cannot be built at this sample rate");
         player.drum()->setProfiling(profiled);
 
-        const auto& strikes = plan.strikes;
-        std::size_t nextStrike = 0, index = 0;
+        std::size_t nextStrike = 0, nextChange = 0, index = 0;
         Clock::duration runTotal {};
 
         for (std::int64_t position = 0; position < plan.numSamples; ++index)
         {
             const int n = (int) std::min<std::int64_t>(blockSize, plan.numSamples - position);
-            events.clear();
-            while (nextStrike < strikes.size() && strikes[nextStrike].sample < position + n)
-            {
-                const auto& strike = strikes[nextStrike++];
-                events.push_back(PlayerEvent::noteOn((int) (strike.sample - position), kBenchNote, strike.velocity));
-            }
+            gatherEvents(plan, position, n, kBenchNote, nextStrike, nextChange, events);
 
             const auto start = Clock::now();
-            // As processBlock: every parameter to the player, then the block with its events.
-            for (const auto& spec : parameterSpecs())
-                player.setTarget(spec.id, params.get(spec.id));
-            player.process(block.data(), n, events);
+            // As processBlock: the block with its events (the session hands every parameter to the player).
+            session.process(block.data(), n, events);
             const auto elapsed = Clock::now() - start;
 
             runTotal += elapsed;

@@ -1,10 +1,11 @@
 #pragma once
-// --bench: the render timed as the plug-in runs it. The drum is played by the real-time player
-// (DrumPlayer.h) exactly as the plug-in's processBlock calls it: the model built from the
-// parameters (makeDrumConfig, no --lossless), every parameter handed to the player at each
-// block of --block-size samples, each strike a note-on of note 38 (the articulation path) at
-// its sample, energy tracking off and denormals flushed to zero (juce::ScopedNoDenormals, as
-// in processBlock). Every block, parameters and events included, is timed with
+// --bench: the render timed as the plug-in runs it. The drum is played through a DrumSession
+// (the engine's one door) exactly as the plug-in's processBlock calls it: the model built from
+// the parameters (no --lossless), every parameter handed to the session at each block of
+// --block-size samples, each strike a note-on of note 38 (the articulation path) and each
+// --set-at change at its sample, energy tracking off and denormals flushed to zero
+// (juce::ScopedNoDenormals, as in processBlock). The session plays as the renderer's
+// (DrumSession::Mode::render): the parameters as given, with no keep-up fallback. Every block, parameters and events included, is timed with
 // std::chrono::steady_clock; the audio statistics and the WAV are handled outside the timed
 // section.
 
@@ -12,6 +13,7 @@
 #include "RenderPlan.h"
 #include "Renderer.h"
 
+#include "BuildOptions.h"
 #include "Parameters.h"
 
 #include <functional>
@@ -38,17 +40,17 @@ std::string_view scenarioName(const RenderJob& job);
 // the scenario's length (--bench-short: 0.25 s; with --midi: the usual last note + 2 s).
 RenderJob benchmarkJob(const RenderJob& job);
 
-// Renders the plan `repeats` times, each on a new player and drum, as described above.
+// Renders the plan `repeats` times, each on a new session and drum, as described above.
 // audio (may be empty) receives every block of the first run's mix. The result's `bench`
 // holds the block timings (each block's fastest run, and the raw extremes), the grid
 // figures and the process's peak resident size; the other figures are of the first run.
 // After the timed runs the plan is played once more the same way with the drum's step
 // profile on (Drum::setProfiling): bench->profile, and that run's time beside the fastest
 // timed run's (what the profiling itself costs).
-// With the air box (config's model AirModel::airbox) the player plays a drum built from config
-// (so the air options, --threads among them, apply), and after the runs the air box's update is
-// timed against a bare 7-point stencil on the same grid (bench->air).
-RenderStats benchmarkDrum(const ParameterSet& params, const DrumConfig& config, const RenderPlan& plan, int blockSize, int repeats,
-                          const std::function<void(std::span<const float>)>& audio);
+// The drums are built with `options` (the air box's, --threads among them); `config` is the
+// first drum's configuration. With the air box, after the runs the air box's update is timed
+// against a bare 7-point stencil on the same grid (bench->air).
+RenderStats benchmarkDrum(const ParameterSet& params, const BuildOptions& options, const DrumConfig& config, const RenderPlan& plan,
+                          int blockSize, int repeats, const std::function<void(std::span<const float>)>& audio);
 
 } // namespace snaresim::render

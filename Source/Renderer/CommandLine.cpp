@@ -87,9 +87,9 @@ std::string choiceList(const ParameterSpec& parameter)
 // (ParameterText.h): a number in the schema's unit or with a unit ("140 mm"), a choice's or a
 // toggle's name; integer, toggle and choice parameters take whole numbers only
 // (ParameterSet::set, which checks the range later, refuses fractions too; this says why).
-double parseParameterValue(const ParameterSpec& parameter, std::string_view text)
+double parseParameterValue(const ParameterSpec& parameter, std::string_view text, std::string_view optionName = "--set")
 {
-    const auto option = "--set " + std::string(parameter.key);
+    const auto option = std::string(optionName) + " " + std::string(parameter.key);
     const bool named = parameter.kind == ParamKind::choice || parameter.kind == ParamKind::toggle;
     const auto value = parseValue(parameter, text, BareNumber::schemaUnit);
 
@@ -142,11 +142,11 @@ MicOutput parseMic(std::string_view text)
     fail("--mic: " + inQuotes(text) + " is not one of " + std::string(micChoices()));
 }
 
-ParameterOverride parseOverride(std::string_view text)
+ParameterOverride parseOverrideOf(std::string_view text, const std::string& option)
 {
     const auto equals = text.find('=');
     if (equals == std::string_view::npos || equals == 0)
-        fail("--set: " + inQuotes(text) + " is not ID=VALUE (see --list-params)");
+        fail(option + ": " + inQuotes(text) + " is not ID=VALUE (see --list-params)");
 
     const auto key = text.substr(0, equals);
     const auto id = findParameter(key);
@@ -154,7 +154,7 @@ ParameterOverride parseOverride(std::string_view text)
     if (id)
     {
         result.id = *id;
-        result.value = parseParameterValue(spec(*id), text.substr(equals + 1));
+        result.value = parseParameterValue(spec(*id), text.substr(equals + 1), option);
     }
     else
     {
@@ -167,14 +167,30 @@ ParameterOverride parseOverride(std::string_view text)
         }
         catch (const std::invalid_argument& e)
         {
-            fail("--set " + std::string(key) + ": " + e.what());
+            fail(option + " " + std::string(key) + ": " + e.what());
         }
         if (! old)
-            fail("--set: unknown parameter " + inQuotes(key) + " (see --list-params)");
+            fail(option + ": unknown parameter " + inQuotes(key) + " (see --list-params)");
         result.id = old->first;
         result.value = old->second;
     }
     result.text = std::string(text);
+    return result;
+}
+
+ParameterOverride parseOverride(std::string_view text) { return parseOverrideOf(text, "--set"); }
+
+TimedOverride parseTimedOverride(std::string_view text)
+{
+    const auto colon = text.find(':');
+    if (colon == std::string_view::npos || colon == 0)
+        fail("--set-at: " + inQuotes(text) + " is not TIME:ID=VALUE (e.g. 0.5:snare_tension=60)");
+    TimedOverride result;
+    result.time_s = parseNumber(text.substr(0, colon), "--set-at time");
+    if (result.time_s < 0.0 || result.time_s > kMaxSeconds)
+        fail("--set-at: time " + inQuotes(text.substr(0, colon)) + " is outside 0.." + std::to_string((int) kMaxSeconds) + " s");
+    result.change = parseOverrideOf(text.substr(colon + 1), "--set-at");
+    result.change.text = std::string(text);
     return result;
 }
 
@@ -570,6 +586,7 @@ CommandLine parseCommandLine(const std::vector<std::string>& args)
     options.once("--sample-rate", sampleRate, parseSampleRate);
     options.once("--preset", job.preset, parsePresetName);
     options.each("--set", job.overrides, parseOverride);
+    options.each("--set-at", job.automation, parseTimedOverride);
     options.once("--model", job.airModel, parseModel);
     options.once("--mic", job.mic, parseMic);
     options.once("--energy-csv", job.energyCsv, parsePath);
@@ -748,15 +765,20 @@ Model:
                         parameters also take their names (snares_engaged=off). The snares:
                         snares_engaged (0 off, 1 on), snare_tension, snare_count,
                         carry_tension, shell_depth
+  --set-at TIME:ID=VALUE
+                        from TIME seconds on, set one parameter as a host's automation
+                        does: smoothed over 30 ms, or a new drum built and crossfaded in
+                        (20 ms) where the parameter needs one (snare_count, quality, ...);
+                        repeatable (e.g. --set-at 1:snares_engaged=off)
   --lossless            switch every loss off (energy is then conserved); reports the
                         energy balance drift (energy_relative_drift_max)
   --list-params         list every parameter (ID, range, unit, default) and exit
 
 Benchmark:
-  --bench               time the render as the plug-in runs it: the drum built from the
-                        parameters (makeDrumConfig), blocks of --block-size samples through
-                        Drum::process (the mix), strikes as MIDI note 38 (Drum::playNote) on
-                        their sample, no energy tracking, denormals flushed; every block is
+  --bench               time the render as the plug-in runs it: the same session as the
+                        plug-in's processBlock, blocks of --block-size samples (the mix),
+                        strikes as MIDI note 38 and --set-at changes on their sample, no
+                        energy tracking, denormals flushed; every block is
                         timed (steady clock). -o is optional; the other outputs, --lossless
                         and --mic other than mix are refused. The summary / JSON adds
                         realtime_factor (audio s / wall s), mean_block_ms, worst_block_ms,

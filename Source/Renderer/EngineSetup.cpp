@@ -81,11 +81,13 @@ ParameterSet makeParameters(const RenderJob& job)
     return params;
 }
 
-namespace
+BuildOptions makeBuildOptions(const RenderJob& job, const ParameterSet& params, bool trackEnergy)
 {
-// The air box's options (--air-mic, --walls, --box, --box-margin, --threads) into the config.
-void applyAirOptions(const RenderJob& job, DrumConfig& config)
-{
+    BuildOptions options;
+    options.lossless = job.lossless;
+    options.trackEnergy = trackEnergy;
+
+    const DrumConfig config = mapParameters(params, job.sampleRate_Hz);
     const bool airBox = config.cavity.model == AirModel::airbox;
     for (const auto& [given, option] : { std::pair { ! job.airMics.empty(), "--air-mic" },
                                          { job.walls.has_value(), "--walls" },
@@ -95,11 +97,10 @@ void applyAirOptions(const RenderJob& job, DrumConfig& config)
         if (given && ! airBox)
             throw UserError(std::string(option) + " applies to the air box only (--model airbox)");
     if (! airBox)
-        return;
+        return options;
     if (job.boxSize && job.boxMargin)
         throw UserError("--box and --box-margin: give one or the other");
 
-    auto& air = config.airBox;
     if ((int) job.airMics.size() > DrumAirSpec::maxMics)
         throw UserError("--air-mic: at most " + std::to_string(DrumAirSpec::maxMics) + " air microphones");
     const double R = config.batter.radius_m, H = config.cavity.shellDepth_m;
@@ -109,31 +110,22 @@ void applyAirOptions(const RenderJob& job, DrumConfig& config)
             throw UserError("--air-mic " + numberText(p.x) + "," + numberText(p.y) + "," + numberText(p.z) +
                             ": inside the drum's shell (radius " + numberText(R) + " m, heads at z = +-" + numberText(0.5 * H) +
                             " m); a microphone goes in the air around the drum");
-        air.mics[(std::size_t) air.numMics++] = { p.x, p.y, p.z };
+        options.airMics[(std::size_t) options.numAirMics++] = { p.x, p.y, p.z };
     }
     if (job.walls)
-        air.walls = *job.walls == Walls::reflecting ? AirWalls::reflecting : AirWalls::absorbing;
+        options.walls = *job.walls == Walls::reflecting ? AirWalls::reflecting : AirWalls::absorbing;
     if (job.boxSize)
-        air.size_m = { job.boxSize->x, job.boxSize->y, job.boxSize->z };
-    if (job.boxMargin)
-    {
-        air.size_m = { 0.0, 0.0, 0.0 }; // sized from the drum and the margin
-        air.margin_m = *job.boxMargin;
-    }
-    air.threads = job.threads.value_or((int) std::max(1u, std::thread::hardware_concurrency()));
+        options.boxSize_m = std::array<double, 3> { job.boxSize->x, job.boxSize->y, job.boxSize->z };
+    options.boxMargin_m = job.boxMargin;
+    options.threads = job.threads.value_or((int) std::max(1u, std::thread::hardware_concurrency()));
+    return options;
 }
-} // namespace
 
-DrumConfig makeConfig(const RenderJob& job, const ParameterSet& params)
+DrumConfig makeConfig(const RenderJob& job, const ParameterSet& params, const BuildOptions& options)
 {
     try
     {
-        DrumConfig config = mapParameters(params, job.sampleRate_Hz);
-        applyAirOptions(job, config);
-        if (job.lossless)
-            config = config.lossless(); // with the air box: reflecting walls, sigma_a = 0
-        config.validate();
-        return config;
+        return makeDrumConfig(params, job.sampleRate_Hz, options);
     }
     catch (const std::invalid_argument& e)
     {
@@ -145,15 +137,39 @@ DrumConfig makeConfig(const RenderJob& job, const ParameterSet& params)
     }
 }
 
-std::unique_ptr<Drum> makeDrum(const DrumConfig& config)
+void checkChanges(const RenderJob& job, const RenderPlan& plan, ParameterSet params, const BuildOptions& options)
 {
+    for (const auto& change : plan.changes)
+    {
+        try
+        {
+            params.set(change.id, change.value);
+        }
+        catch (const std::out_of_range& e)
+        {
+            throw UserError("--set-at " + change.text + ": " + e.what());
+        }
+        try
+        {
+            (void) makeConfig(job, params, options);
+        }
+        catch (const UserError& e)
+        {
+            throw UserError("--set-at " + change.text + ": " + e.what());
+        }
+    }
+}
+
+void startSession(DrumSession& session, const ParameterSet& params, double sampleRate_Hz, int blockSize)
+{
+    session.setParameters(params);
     try
     {
-        return std::make_unique<Drum>(config);
+        session.prepareAndStart(sampleRate_Hz, blockSize);
     }
     catch (const std::invalid_argument& e)
     {
-        throw UserError("the model cannot be simulated at " + numberText(config.sampleRate_Hz) + " Hz with these parameters: " + e.what());
+        throw UserError("the model cannot be simulated at " + numberText(sampleRate_Hz) + " Hz with these parameters: " + e.what());
     }
 }
 

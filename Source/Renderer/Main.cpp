@@ -120,8 +120,13 @@ int render(const RenderJob& commandLineJob)
     const auto params = makeParameters(commandLineJob);
     const auto midiStrikes = commandLineJob.midiFile ? readMidiStrikes(*commandLineJob.midiFile) : std::vector<Strike> {};
     const auto plan = makeRenderPlan(commandLineJob, midiStrikes);
-    const auto config = makeConfig(commandLineJob, params);
-    auto drum = makeDrum(config);
+    const bool trackEnergy = commandLineJob.lossless || commandLineJob.energyCsv || commandLineJob.energyPlot;
+    const auto options = makeBuildOptions(commandLineJob, params, trackEnergy);
+    const auto config = makeConfig(commandLineJob, params, options);
+    checkChanges(commandLineJob, plan, params, options);
+    DrumSession session(DrumSession::Mode::render, options);
+    startSession(session, params, plan.sampleRate_Hz, kRenderBlockSize);
+    const Drum* drum = session.drumPlayer().drum();
     std::optional<DistanceReport> distance;
     if (! commandLineJob.references.empty())
         distance = DistanceReport { loadReferences(commandLineJob.references), {} };
@@ -205,8 +210,7 @@ int render(const RenderJob& commandLineJob)
         sinks.stateTo = snarePlot->lastTime();
     }
 
-    const bool trackEnergy = job.lossless || job.energyCsv || job.energyPlot;
-    const auto stats = renderDrum(std::move(drum), params, plan, mics, trackEnergy, sinks);
+    const auto stats = renderDrum(session, plan, mics, sinks);
 
     progress.finish();
     wav.finish();
@@ -265,8 +269,13 @@ int benchmark(const RenderJob& commandLineJob)
     const auto params = makeParameters(job);
     const auto midiStrikes = job.midiFile ? readMidiStrikes(*job.midiFile) : std::vector<Strike> {};
     const auto plan = makeRenderPlan(job, midiStrikes);
-    const auto config = makeConfig(job, params); // no --lossless with --bench: makeDrumConfig as is
-    (void) makeDrum(config);                     // a config the engine refuses fails here, before any output
+    const auto options = makeBuildOptions(job, params, false); // no --lossless with --bench
+    const auto config = makeConfig(job, params, options);      // a config the engine refuses fails here, before any output
+    checkChanges(job, plan, params, options);
+    {
+        DrumSession probe(DrumSession::Mode::render, options);
+        startSession(probe, params, plan.sampleRate_Hz, job.selectedBlockSize());
+    }
 
     std::optional<AtomicFile> wavFile;
     std::unique_ptr<WavWriter> wav;
@@ -277,7 +286,7 @@ int benchmark(const RenderJob& commandLineJob)
     }
 
     const auto stats =
-        benchmarkDrum(params, config, plan, job.selectedBlockSize(), job.selectedRepeats(), [&](std::span<const float> block) {
+        benchmarkDrum(params, options, config, plan, job.selectedBlockSize(), job.selectedRepeats(), [&](std::span<const float> block) {
             throwIfInterrupted(); // once per block, outside the timed section
             if (wav)
             {

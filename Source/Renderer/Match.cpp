@@ -88,10 +88,13 @@ struct Candidate
 
 // ---- rendering --------------------------------------------------------------------------------
 
-// One strike at time 0, the player's mix (what the plug-in plays).
+// One strike at time 0, the session's mix (what the plug-in plays). Throws
+// std::invalid_argument when the candidate cannot be built.
 std::vector<double> renderStrike(const Candidate& candidate, double rate)
 {
-    auto drum = std::make_unique<Drum>(makeDrumConfig(candidate.params, rate));
+    DrumSession session(DrumSession::Mode::render);
+    session.setParameters(candidate.params);
+    session.prepareAndStart(rate, kRenderBlockSize);
     RenderPlan plan;
     plan.sampleRate_Hz = rate;
     plan.numSamples = std::lround(kMatchSeconds * rate);
@@ -104,7 +107,7 @@ std::vector<double> renderStrike(const Candidate& candidate, double rate)
         samples.insert(samples.end(), channels.front().begin(), channels.front().end());
     };
     const Channel mix {};
-    renderDrum(std::move(drum), candidate.params, plan, std::span(&mix, 1), false, sinks);
+    renderDrum(session, plan, std::span(&mix, 1), sinks);
     return samples;
 }
 

@@ -76,6 +76,14 @@ struct ParameterOverride
     std::string text; // as typed, for error messages
 };
 
+// One --set-at TIME:ID=VALUE: the parameter takes the value from that time on, as a host's
+// automation does (smoothed, or a new drum crossfaded in where the parameter needs one).
+struct TimedOverride
+{
+    double time_s = 0.0;
+    ParameterOverride change;
+};
+
 // One coordinate --match searches: a parameter, or (no id) the strike's MIDI velocity.
 struct MatchCoordinate
 {
@@ -110,6 +118,7 @@ struct RenderJob
     std::optional<int> airModel;                             // --model: index into air_model's choices
     std::optional<MicOutput> mic;                            // --mic (default: mix)
     std::vector<ParameterOverride> overrides;                // --set, applied in order after the preset
+    std::vector<TimedOverride> automation;                   // --set-at, in command-line order
     bool lossless = false;                                   // --lossless
     bool json = false;                                       // --json
     bool bench = false;                                      // --bench
@@ -140,6 +149,7 @@ struct RenderJob
     {
         const std::pair<bool, const char*> options[] {
             { ! hits.empty(), "--hit" },
+            { ! automation.empty(), "--set-at" },
             { midiFile.has_value(), "--midi" },
             { seconds.has_value(), "--seconds" },
             { energyCsv.has_value(), "--energy-csv" },

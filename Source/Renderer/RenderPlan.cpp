@@ -39,6 +39,15 @@ RenderPlan makeRenderPlan(const RenderJob& job, const std::vector<Strike>& midiS
         else
             ++plan.strikesOutside;
     }
+
+    for (const auto& [time_s, change] : job.automation)
+    {
+        const auto sample = std::llround(time_s * job.sampleRate_Hz);
+        if (sample < plan.numSamples)
+            plan.changes.push_back({ sample, change.id, change.value, change.text });
+    }
+    std::stable_sort(plan.changes.begin(), plan.changes.end(),
+                     [](const ScheduledChange& a, const ScheduledChange& b) { return a.sample < b.sample; });
     return plan;
 }
 

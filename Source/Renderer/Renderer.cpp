@@ -1,7 +1,6 @@
 #include "Renderer.h"
 
 #include "DrumConfig.h"
-#include "DrumPlayer.h"
 
 #include <algorithm>
 #include <chrono>
@@ -15,8 +14,6 @@ namespace snaresim::render
 {
 namespace
 {
-
-constexpr int kBlockSize = 1024;
 
 // Running audio and energy statistics (kept out of the timed section).
 struct Statistics
@@ -94,28 +91,48 @@ struct Statistics
 
 } // namespace
 
-RenderStats renderDrum(std::unique_ptr<Drum> drumToPlay, const ParameterSet& params, const RenderPlan& plan, std::span<const Channel> mics,
-                       bool trackEnergy, const RenderSinks& sinks)
+void gatherEvents(const RenderPlan& plan, std::int64_t position, int n, std::optional<int> note, std::size_t& nextStrike,
+                  std::size_t& nextChange, std::vector<PlayerEvent>& events)
+{
+    events.clear();
+    const auto& strikes = plan.strikes;
+    const auto& changes = plan.changes;
+    for (;;)
+    {
+        const bool change = nextChange < changes.size() && changes[nextChange].sample < position + n;
+        const bool strike = nextStrike < strikes.size() && strikes[nextStrike].sample < position + n;
+        if (change && (! strike || changes[nextChange].sample <= strikes[nextStrike].sample))
+        {
+            const auto& c = changes[nextChange++];
+            events.push_back(PlayerEvent::parameterChange((int) std::max<std::int64_t>(0, c.sample - position), c.id, c.value));
+        }
+        else if (strike)
+        {
+            const auto& s = strikes[nextStrike++];
+            const int at = (int) std::max<std::int64_t>(0, s.sample - position);
+            events.push_back(note ? PlayerEvent::noteOn(at, *note, s.velocity) : PlayerEvent::strikeAt(at, s.velocity));
+        }
+        else
+            break;
+    }
+}
+
+RenderStats renderDrum(DrumSession& session, const RenderPlan& plan, std::span<const Channel> mics, const RenderSinks& sinks)
 {
     using Clock = std::chrono::steady_clock;
 
-    drumToPlay->setEnergyTracking(trackEnergy);
-    drumToPlay->resetStats();
-
-    // The same player as the plug-in's, with this drum as it was built (--lossless included).
-    DrumPlayer player([params] { return params; });
-    player.startWith(std::move(drumToPlay), params);
+    auto& player = session.drumPlayer();
+    const bool trackEnergy = player.drum() != nullptr && player.drum()->energyTracking();
 
     const std::size_t numChannels = mics.size();
-    std::vector<std::vector<float>> blocks(numChannels, std::vector<float>((std::size_t) kBlockSize));
-    std::vector<float> mixBlock((std::size_t) kBlockSize);
+    std::vector<std::vector<float>> blocks(numChannels, std::vector<float>((std::size_t) kRenderBlockSize));
+    std::vector<float> mixBlock((std::size_t) kRenderBlockSize);
     std::vector<std::span<const float>> channels(numChannels);
     std::vector<EnergyLedger> ledgers;
-    ledgers.reserve((std::size_t) kBlockSize);
+    ledgers.reserve((std::size_t) kRenderBlockSize);
     std::vector<PlayerEvent> events;
 
-    const auto& strikes = plan.strikes;
-    std::size_t nextStrike = 0;
+    std::size_t nextStrike = 0, nextChange = 0;
 
     Statistics statistics;
     Clock::duration engineTime {};
@@ -151,20 +168,15 @@ RenderStats renderDrum(std::unique_ptr<Drum> drumToPlay, const ParameterSet& par
 
     for (std::int64_t position = 0; position < plan.numSamples;)
     {
-        const int n = (int) std::min<std::int64_t>(kBlockSize, plan.numSamples - position);
+        const int n = (int) std::min<std::int64_t>(kRenderBlockSize, plan.numSamples - position);
 
-        // Every strike scheduled in this block, on its sample (before the step that computes it).
-        events.clear();
-        while (nextStrike < strikes.size() && strikes[nextStrike].sample < position + n)
-        {
-            const auto& strike = strikes[nextStrike++];
-            events.push_back(PlayerEvent::strikeAt((int) std::max<std::int64_t>(0, strike.sample - position), strike.velocity));
-        }
+        // Every strike and change scheduled in this block, on its sample (before the step that computes it).
+        gatherEvents(plan, position, n, std::nullopt, nextStrike, nextChange, events);
 
         const auto start = Clock::now();
         ledgers.clear();
         indexInBlock = 0;
-        player.process(mixBlock.data(), n, events, &observer);
+        session.process(mixBlock.data(), n, events, &observer);
         engineTime += Clock::now() - start;
 
         for (std::size_t c = 0; c < numChannels; ++c)

@@ -1,6 +1,6 @@
 #pragma once
-// The render loop: plays a RenderPlan on a snaresim::Drum through the player, strikes at their exact samples,
-// and hands the audio of the asked microphones (and, with energy tracking, the energy
+// The render loop: plays a RenderPlan through a started DrumSession (the engine's one door, as
+// the plug-in plays it), strikes and --set-at changes at their exact samples, and hands the audio of the asked microphones (and, with energy tracking, the energy
 // ledger of every sample; on request, the drum itself after the steps of a range of samples)
 // to the callers' sinks. Measures the time spent in the engine only.
 
@@ -9,6 +9,7 @@
 
 #include "AirSpeed.h"
 #include "Drum.h"
+#include "DrumSession.h"
 #include "EnergyLedger.h"
 #include "Parameters.h"
 
@@ -23,6 +24,8 @@
 
 namespace snaresim::render
 {
+
+inline constexpr int kRenderBlockSize = 1024; // the renderer's blocks (the session splits them at events)
 
 // --bench (Benchmark.h): the timing of every block and the size of the model.
 struct BenchFigures
@@ -82,10 +85,16 @@ struct RenderSinks
     std::int64_t stateFrom = 0, stateTo = 0;
 };
 
-// Plays the plan on `drum` (built from `params`) through the real-time player, as the plug-in
-// plays it. mics: the signals to render, one channel each (Microphones.h: drum.output(mic) after
-// every step, Mic::mix the player's output, an air microphone's pressure at audio level).
-RenderStats renderDrum(std::unique_ptr<Drum> drum, const ParameterSet& params, const RenderPlan& plan, std::span<const Channel> mics,
-                       bool trackEnergy, const RenderSinks& sinks);
+// Plays the plan through `session` (started: EngineSetup.h's startSession). mics: the signals
+// to render, one channel each (Microphones.h: drum.output(mic) after every step, Mic::mix the
+// session's output, an air microphone's pressure at audio level). The energy is tracked when
+// the session's drums keep their ledger (BuildOptions::trackEnergy).
+RenderStats renderDrum(DrumSession& session, const RenderPlan& plan, std::span<const Channel> mics, const RenderSinks& sinks);
+
+// The plan's strikes (as the main strike, or as `note` when given) and --set-at changes in
+// [position, position + n), as events of that block in sample order (changes first on a shared
+// sample); `nextStrike` and `nextChange` advance past them.
+void gatherEvents(const RenderPlan& plan, std::int64_t position, int n, std::optional<int> note, std::size_t& nextStrike,
+                  std::size_t& nextChange, std::vector<PlayerEvent>& events);
 
 } // namespace snaresim::render

@@ -1,0 +1,120 @@
+// snaresim-render --set-at: a parameter changed during the render as a host's automation changes
+// it, through the same session as the plug-in (smoothed, or a new drum crossfaded in), and the
+// bad input it gets.
+
+#include "RendererTestSupport.h"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+using namespace rendertest;
+
+namespace
+{
+
+constexpr int kRate = 48000;
+
+std::vector<float> render(const TempDir& dir, const std::string& name, const std::vector<std::string>& more)
+{
+    const auto wav = dir.out() / name;
+    std::vector<std::string> args { "-o", wav.string(), "--seconds", "0.3", "--set", "bandwidth=7839.5127" };
+    args.insert(args.end(), more.begin(), more.end());
+    const auto run = runRenderer(args, dir.root() / "capture");
+    INFO("stderr: " << run.err);
+    REQUIRE(run.exitCode == 0);
+    const auto data = readWav(wav);
+    REQUIRE(data.opened);
+    REQUIRE(data.length == (long long) (0.3 * kRate));
+    for (const float x : data.samples)
+        REQUIRE(std::isfinite(x));
+    return data.samples;
+}
+
+std::vector<float> slice(const std::vector<float>& x, double from_s, double to_s)
+{
+    return { x.begin() + (long) std::lround(from_s * kRate), x.begin() + (long) std::lround(to_s * kRate) };
+}
+
+double rms(const std::vector<float>& x)
+{
+    double sum = 0.0;
+    for (const float v : x)
+        sum += (double) v * v;
+    return x.empty() ? 0.0 : std::sqrt(sum / (double) x.size());
+}
+
+} // namespace
+
+TEST_CASE("set-at: a parameter changes from its sample on, smoothed as the plug-in smooths it", "[renderer][automation]")
+{
+    TempDir dir;
+    const auto plain = render(dir, "plain.wav", { "--hit", "0:100" });
+    const auto changed = render(dir, "changed.wav", { "--hit", "0:100", "--set-at", "0.1:batter_tension=5500" });
+
+    // Before the change the two renders are the same to the bit; after it they part.
+    CHECK(slice(plain, 0.0, 0.1) == slice(changed, 0.0, 0.1));
+    const auto after = slice(plain, 0.15, 0.3), afterChanged = slice(changed, 0.15, 0.3);
+    CHECK(rmsDifference(after, afterChanged) > 0.1 * rms(after));
+
+    // Smoothed over 30 ms: in the first millisecond the tension has moved by a thirtieth of the way, so the
+    // renders still differ far less than they do once it has arrived.
+    const double early = rmsDifference(slice(plain, 0.1, 0.101), slice(changed, 0.1, 0.101));
+    const double late = rmsDifference(slice(plain, 0.2, 0.201), slice(changed, 0.2, 0.201));
+    CHECK(early < 0.1 * late);
+
+    // Two changes in command-line order: the later one at the same time wins.
+    const auto twice =
+        render(dir, "twice.wav", { "--hit", "0:100", "--set-at", "0.1:batter_tension=1500", "--set-at", "0.1:batter_tension=5500" });
+    CHECK(twice == changed);
+}
+
+TEST_CASE("set-at: a parameter that needs a new drum builds it at its sample and crossfades it in", "[renderer][automation]")
+{
+    TempDir dir;
+    const auto plain = render(dir, "plain.wav", { "--hit", "0:100", "--hit", "0.2:100" });
+    const auto rebuilt = render(dir, "rebuilt.wav", { "--hit", "0:100", "--hit", "0.2:100", "--set-at", "0.1:snare_count=8" });
+
+    CHECK(slice(plain, 0.0, 0.1) == slice(rebuilt, 0.0, 0.1));
+    // The ringing drum fades out over 20 ms and the new one starts at rest, as in the plug-in:
+    // quiet from then until the next strike.
+    CHECK(rms(slice(rebuilt, 0.13, 0.2)) < 1e-3 * rms(slice(plain, 0.13, 0.2)));
+    // The new drum, with its 8 wires, plays the next strike.
+    const auto second = slice(rebuilt, 0.2, 0.3);
+    CHECK(rms(second) > 0.1 * rms(slice(plain, 0.2, 0.3)));
+    CHECK(rmsDifference(second, slice(plain, 0.2, 0.3)) > 0.05 * rms(second));
+}
+
+TEST_CASE("set-at: --bench plays the changes as the plug-in would", "[renderer][automation][bench]")
+{
+    TempDir dir;
+    const auto run = runRenderer({ "--bench", "--bench-short", "--json", "--set", "bandwidth=5000", "--set-at", "0.1:snares_engaged=off",
+                                   "--set-at", "0.15:snare_count=6" },
+                                 dir.root() / "capture");
+    INFO("stderr: " << run.err);
+    REQUIRE(run.exitCode == 0);
+    const auto report = parseJson(run.out);
+    CHECK((double) report["nonfinite_samples"] == 0.0);
+}
+
+TEST_CASE("bad input: --set-at", "[renderer][errors][automation]")
+{
+    TempDir dir;
+    const auto out = (dir.out() / "out.wav").string();
+    auto bad = [&](std::vector<std::string> more, const std::string& mentions) {
+        std::vector<std::string> args { "-o", out, "--hit", "0:100", "--seconds", "0.2" };
+        args.insert(args.end(), more.begin(), more.end());
+        requireRejected(dir, args, mentions);
+    };
+    bad({ "--set-at", "0.1" }, "--set-at");
+    bad({ "--set-at", "x:snare_count=3" }, "--set-at time");
+    bad({ "--set-at", "-1:snare_count=3" }, "--set-at");
+    bad({ "--set-at", "0.1:nope=3" }, "nope");
+    bad({ "--set-at", "0.1:snare_count=2.5" }, "snare_count");
+    bad({ "--set-at", "0.1:snare_count=1000" }, "--set-at 0.1:snare_count=1000");
+    bad({ "--set-at", "0.1:snares_engaged=maybe" }, "maybe");
+    // Out of range: refused before anything is written.
+    bad({ "--set-at", "0.1:shell_depth=1 mm" }, "--set-at 0.1:shell_depth=1 mm");
+}
