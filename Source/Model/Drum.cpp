@@ -62,15 +62,13 @@ std::vector<Mallet> makeMallets(const DrumConfig& c, const Membrane& batter, dou
 // coupling that stores energy adds its term here. (CavityCoupling stores none: no term lists it.)
 auto Drum::energyTerms() const
 {
-    return std::tuple { EnergyTerm("batter", batterHead),                                 // eq. (35)
-                        EnergyTerm("carry", carryHead),                                   // eq. (35)
-                        EnergyTerm("mallets", mallets, malletCoupling),                   // eq. (37)
-                        EnergyTerm("snares", wires, snareCoupling).when(engaged),         // eq. (38)
-                        EnergyTerm("cavity", cavityAir),                                  // (K/2) dV^{n+1} dV^n
-                        EnergyTerm("cavity_modes", modes).listedIf(modes.active()),       // CavityModes.h
-                        EnergyTerm("outside", outside).listedIf(outside.active()),        // OutsideAir.h
-                        EnergyTerm("near_field", nearField).listedIf(nearField.active()), // NearFieldAir.h
-                        EnergyTerm("airbox", boxAir).listedIf(boxAir.active()) };         // eq. (36)
+    return std::tuple_cat(std::tuple { EnergyTerm("batter", batterHead),                          // eq. (35)
+                                       EnergyTerm("carry", carryHead),                            // eq. (35)
+                                       EnergyTerm("mallets", mallets, malletCoupling),            // eq. (37)
+                                       EnergyTerm("snares", wires, snareCoupling).when(engaged),  // eq. (38)
+                                       EnergyTerm("cavity", cavityAir) },                         // (K/2) dV^{n+1} dV^n
+                          attachedAir.energyTerms(),                                              // AttachedAir.h
+                          std::tuple { EnergyTerm("airbox", boxAir).listedIf(boxAir.active()) }); // eq. (36)
 }
 
 Drum::Drum(const DrumConfig& config)
@@ -78,11 +76,8 @@ Drum::Drum(const DrumConfig& config)
       batterHead(cfg.batter, k, cfg.kineticReserve(true)), carryHead(cfg.carry, k, cfg.kineticReserve(false)),
       wires(cfg.fittedSnares(), cfg.carry.radius_m, k), snareCoupling(cfg.snares, wires, carryHead),
       mallets(makeMallets(cfg, batterHead, k)), malletCoupling(batterHead, mallets), cavityCoupling(batterHead, carryHead, cavityAir),
-      outside(cfg.cavity.model == AirModel::airbox ? OutsideAirSpec {} : cfg.outside, cfg.batter, cfg.carry, k),
-      outsideCoupling(batterHead, carryHead, outside), modes(cfg.cavity, cfg.cavityModesUpTo_Hz(), cfg.batter.radius_m, k),
-      modesCoupling(batterHead, carryHead, modes, cfg.cavity.modeCellSize_m), nearField(cfg.nearFieldSpec(), k),
-      nearFieldCoupling(batterHead, carryHead, nearField, cfg.cavity.modeCellSize_m, cfg.outside.nearFieldCellSize_m),
-      pressureMics(cfg.mics, cfg.cavity, cfg.sampleRate_Hz, batterHead, carryHead), toHost(cfg.outputFactor()), engaged(cfg.snares.engaged)
+      attachedAir(cfg, batterHead, carryHead, k), pressureMics(cfg.mics, cfg.cavity, cfg.sampleRate_Hz, batterHead, carryHead),
+      toHost(cfg.outputFactor()), engaged(cfg.snares.engaged)
 {
     if (cfg.cavity.model == AirModel::airbox)
     {
@@ -184,8 +179,7 @@ void Drum::applyLive(const DrumConfig& next) noexcept
     wires.setCoefficients(n.snares.tension_N, n.snares.sigma0_per_s, n.snares.sigma1_m2_per_s);
     snareCoupling.setLaw(n.snares.stiffness, n.snares.exponent);
     cavityAir.setSpec(n.cavity, n.batter.radius_m);
-    modes.setSpec(n.cavity);
-    nearField.setSpec(n.nearFieldSpec());
+    attachedAir.each([&](auto& air) { air.setSpec(n); });
     for (auto& m : mallets)
         m.setSpec(n.mallet); // a mallet in flight keeps its position; its patch changes at the next strike
     auto moved = [](const AirPoint& a, const AirPoint& b) { return a.x_m != b.x_m || a.y_m != b.y_m || a.z_m != b.z_m; };
@@ -280,23 +274,11 @@ template <class Lap>
 {
     // 1. The components' free updates, with the cavity's and the outside air's pressures at
     //    time n on the heads (explicit, CavityCoupling.h, OutsideAirCoupling.h).
-    HeadPressure b, c; // the outside air's, 0 without it
-    if (modes.active())
-    {
-        modes.computeFree();
-        modesCoupling.applyPressures(); // the cavity's modes at n, on the heads' cells
-    }
-    if (nearField.active())
-    {
-        nearField.computeFree();
-        nearFieldCoupling.applyPressures(); // the near field at n, on the heads' cells
-    }
-    if (outside.active())
-    {
-        outside.computeFree();
-        b = outsideCoupling.onBatter();
-        c = outsideCoupling.onCarry();
-    }
+    HeadPressure b, c; // the attached air's uniform and tilt parts (the outside air's), 0 without
+    attachedAir.each([&](auto& air) {
+        if (air.active())
+            air.beforeHeads(b, c); // the cavity's modes and the near field on the heads' cells
+    });
     batterHead.computeFree(cavityCoupling.pressureOnBatter() + b.p0, b.px, b.py); // eq. (22) without the contact force
     lap(StepPhase::batterFree);
     carryHead.computeFree(cavityCoupling.pressureOnCarry() + c.p0, c.px, c.py); // eq. (23) without snare and end forces
@@ -440,13 +422,14 @@ double Drum::stepWith(Lap& lap)
     lap(StepPhase::malletsFree);
 
     cavityCoupling.step(); // dV^{n+1}
-    if (modes.active())
-        modesCoupling.step(); // the modes' q^{n+1}
-    if (outside.active())
-        outsideCoupling.step(); // q^{n+1}
-    if (nearField.active())
-        nearFieldCoupling.step({ modesCoupling.blockSums(0, nearFieldCoupling.cellSide(0)),
-                                 modesCoupling.blockSums(1, nearFieldCoupling.cellSide(1)) }); // q^{n+1}
+    CellSums taken;        // the heads' cell sums the attached air takes this step
+    attachedAir.each([&](auto& air) {
+        if (air.active())
+        {
+            air.afterHeads(taken); // q^{n+1}
+            taken.add(air);
+        }
+    });
     lap(boxAir.active() ? StepPhase::signals : StepPhase::cavity); // the air box path counts it with the signals
 
     // 3. Energy at n + 1/2 and the microphones, then every time level moves on.
@@ -457,11 +440,7 @@ double Drum::stepWith(Lap& lap)
     }
 
     // the cells' sums of this step, where a coupling has taken them already
-    auto sumsOf = [&](int head) {
-        const double* s = modesCoupling.blockSums(head, pressureMics.cellSide(head));
-        return s ? s : nearFieldCoupling.blockSums(head, pressureMics.cellSide(head));
-    };
-    pressureMics.listen(batterHead, carryHead, { sumsOf(0), sumsOf(1) });
+    pressureMics.listen(batterHead, carryHead, { taken.at(0, pressureMics.cellSide(0)), taken.at(1, pressureMics.cellSide(1)) });
     const bool boxMics = boxAir.active() && cfg.airBox.numMics == 0; // the box's microphones are the drum's
     signals.top_Pa = boxMics ? boxAir.micPressure(0) : pressureMics.pressure(PressureMicrophones::top);
     signals.bottom_Pa = boxMics ? boxAir.micPressure(1) : pressureMics.pressure(PressureMicrophones::bottom);
@@ -480,12 +459,10 @@ double Drum::stepWith(Lap& lap)
         snareCoupling.advance();
     }
     cavityAir.advance();
-    if (modes.active())
-        modes.advance();
-    if (outside.active())
-        outside.advance();
-    if (nearField.active())
-        nearField.advance();
+    attachedAir.each([](auto& air) {
+        if (air.active())
+            air.advance();
+    });
     if (boxAir.active())
         boxAir.advance();
     for (auto& ml : mallets)
@@ -538,9 +515,7 @@ void Drum::reset()
     wires.clear();
     snareCoupling.clear();
     cavityAir.clear();
-    modes.clear();
-    outside.clear();
-    nearField.clear();
+    attachedAir.each([](auto& air) { air.clear(); });
     boxAir.clear();
     for (auto& m : mallets)
         m.park();

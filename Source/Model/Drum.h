@@ -9,10 +9,12 @@
 // energyTerms() lists which of them each ledger term sums. Hosts play it through DrumPlayer.
 
 #include "Articulations.h"
+#include "AttachedAir.h"
+#include "AttachedCavityModes.h"
+#include "AttachedNearField.h"
+#include "AttachedOutsideAir.h"
 #include "Cavity.h"
 #include "CavityCoupling.h"
-#include "CavityModes.h"
-#include "CavityModesCoupling.h"
 #include "DrumAir.h"
 #include "DrumConfig.h"
 #include "DrumSnapshot.h"
@@ -21,10 +23,6 @@
 #include "Mallet.h"
 #include "MalletContact.h"
 #include "Membrane.h"
-#include "NearFieldAir.h"
-#include "NearFieldCoupling.h"
-#include "OutsideAir.h"
-#include "OutsideAirCoupling.h"
 #include "PressureMicrophones.h"
 #include "SnareContact.h"
 #include "SnareWires.h"
@@ -141,9 +139,9 @@ public:
     const SnareContact& snareContact() const { return snareCoupling; }
     SnareContact& snareContact() { return snareCoupling; }
     const Cavity& cavity() const { return cavityAir; }
-    const OutsideAir& outsideAir() const { return outside; }
-    const CavityModes& cavityModes() const { return modes; }
-    const NearFieldAir& nearFieldAir() const { return nearField; }
+    const OutsideAir& outsideAir() const { return attachedAir.get<AttachedOutsideAir>().component(); }
+    const CavityModes& cavityModes() const { return attachedAir.get<AttachedCavityModes>().component(); }
+    const NearFieldAir& nearFieldAir() const { return attachedAir.get<AttachedNearField>().component(); }
     // The air box (AirModel::airbox): active() false otherwise.
     const DrumAir& airBox() const { return boxAir; }
     const PressureMicrophones& microphones() const { return pressureMics; }
@@ -180,21 +178,18 @@ private:
     DrumConfig cfg;
     double k;
     // Components and the couplings between them (each coupling after what it couples).
-    Cavity cavityAir;                    // component: the enclosed air as one pressure
-    Membrane batterHead, carryHead;      // components
-    SnareWires wires;                    // component
-    SnareContact snareCoupling;          // coupling: wires - carry head
-    std::vector<Mallet> mallets;         // components; never resized after construction
-    MalletContact malletCoupling;        // coupling: mallets - batter
-    CavityCoupling cavityCoupling;       // coupling: heads - cavity
-    OutsideAir outside;                  // component: the outside air's channels; inactive without
-    OutsideAirCoupling outsideCoupling;  // coupling: heads - outside air
-    CavityModes modes;                   // component: the enclosed air's own modes; inactive without
-    CavityModesCoupling modesCoupling;   // coupling: heads - cavity modes
-    NearFieldAir nearField;              // component: the near field's mass on the heads' higher modes; inactive without
-    NearFieldCoupling nearFieldCoupling; // coupling: heads - near field
-    DrumAir boxAir;                      // component (the air box) with its couplings to the heads; inactive without
-    std::vector<double> wiresSaved;      // air box: the wires' free u^{n+1}, for the joint solve's trials
+    Cavity cavityAir;               // component: the enclosed air as one pressure
+    Membrane batterHead, carryHead; // components
+    SnareWires wires;               // component
+    SnareContact snareCoupling;     // coupling: wires - carry head
+    std::vector<Mallet> mallets;    // components; never resized after construction
+    MalletContact malletCoupling;   // coupling: mallets - batter
+    CavityCoupling cavityCoupling;  // coupling: heads - cavity
+    // The air models attached to the heads explicitly, each a component with its coupling
+    // (AttachedAir.h), built, stepped and listed in the ledger in this order; inactive ones are skipped.
+    AttachedAirs<AttachedCavityModes, AttachedOutsideAir, AttachedNearField> attachedAir;
+    DrumAir boxAir;                 // component (the air box) with its couplings to the heads; inactive without
+    std::vector<double> wiresSaved; // air box: the wires' free u^{n+1}, for the joint solve's trials
     std::array<double, MalletContact::maxMallets> malletsSaved {};
 
     PressureMicrophones pressureMics; // the microphones: a listener, no energy, no force
