@@ -1,5 +1,5 @@
-// Golden renders: fixed scenarios played by the renderer (goldens.txt) and by the plug-in's
-// processor, compared sample by sample with the references in this folder. They run on the
+// Golden renders: fixed scenarios played by the renderer (goldens.txt; the plug-in's processor
+// plays its own in GoldenPluginTests.cpp), compared sample by sample with the references in this folder. They run on the
 // path every x86-64 processor computes the same (CMakeLists.txt here: the baseline vector
 // target and glibc's baseline maths, set by ctest), so a change of code that is not meant to
 // change the sound must leave them identical, on any machine; the test states every
@@ -14,7 +14,6 @@
 #include "DrumConfig.h"
 #include "GoldenSupport.h"
 #include "Parameters.h"
-#include "PluginProcessor.h"
 #include "RendererTestSupport.h"
 #include "Report.h"
 #include "VectorTarget.h"
@@ -30,26 +29,13 @@
 using namespace rendertest;
 using golden::compare;
 using golden::Difference;
+using golden::goldenDir;
+using golden::report;
+using golden::requireDeterministicPath;
 using golden::updating;
 
 namespace
 {
-const fs::path goldenDir { SNARESIM_GOLDEN_DIR };
-
-// The goldens are made and compared on the deterministic path only: ctest sets it for this
-// executable (Tests/Golden/CMakeLists.txt); run by hand, it needs the same environment.
-void requireDeterministicPath()
-{
-    const char* tunables = std::getenv("GLIBC_TUNABLES");
-    INFO("the golden tests run with SNARESIM_VECTOR_TARGET=baseline and GLIBC_TUNABLES=" SNARESIM_GOLDEN_TUNABLES
-         " (ctest sets both); here the vector target is "
-         << snaresim::vectorTargetName(snaresim::vectorTarget()) << " and GLIBC_TUNABLES is "
-         << (tunables != nullptr ? tunables : "unset"));
-    REQUIRE(snaresim::vectorTarget() == snaresim::VectorTarget::baseline);
-    REQUIRE(tunables != nullptr);
-    REQUIRE(std::string(tunables) == SNARESIM_GOLDEN_TUNABLES);
-}
-
 struct Golden
 {
     std::string name;
@@ -77,27 +63,6 @@ std::vector<Golden> goldenList()
     return list;
 }
 
-// A render that differs is printed (the test fails); one that is identical only while reporting.
-void report(const std::string& name, const Difference& d)
-{
-    if (d.differing == 0)
-        snaresim::test::report() << "golden " << name << ": identical\n";
-    else
-        std::cout << "golden " << name << ": " << d.differing << " samples differ, largest by " << d.maxAbs << ", difference "
-                  << d.dbBelowSignal << " dB below the signal\n";
-}
-
-void writeFloatWav(const fs::path& file, const std::vector<float>& samples, double sampleRate)
-{
-    fs::remove(file);
-    juce::WavAudioFormat format;
-    std::unique_ptr<juce::OutputStream> stream = std::make_unique<juce::FileOutputStream>(juce::File(file.string()));
-    std::unique_ptr<juce::AudioFormatWriter> writer(format.createWriterFor(stream.get(), sampleRate, 1, 32, {}, 0));
-    REQUIRE(writer != nullptr);
-    stream.release();
-    const float* channels[] = { samples.data() };
-    REQUIRE(writer->writeFromFloatArrays(channels, 1, (int) samples.size()));
-}
 } // namespace
 
 TEST_CASE("the renderer's golden renders are unchanged", "[golden]")
@@ -141,61 +106,6 @@ TEST_CASE("the renderer's golden renders are unchanged", "[golden]")
         report(g.name, d);
         CHECK(d.differing == 0);
     }
-}
-
-TEST_CASE("the plug-in's golden render is unchanged", "[golden]")
-{
-    requireDeterministicPath();
-    // 48 kHz, blocks of 64: a centre strike, an off-centre one, the damping raised while the
-    // drum rings (the smoothing), a near-rim strike, a roll of three.
-    constexpr double rate = 48000.0;
-    constexpr int block = 64, length = 24000;
-    SnareSimAudioProcessor proc;
-    // The chosen Quality in real time too: the golden is the default drum's, however fast this
-    // machine measures ("Lower Quality when slow" off).
-    auto* keepUp = proc.getValueTreeState().getParameter("keep_up");
-    keepUp->setValueNotifyingHost(0.0f);
-    proc.setRateAndBufferSizeDetails(rate, block);
-    proc.prepareToPlay(rate, block);
-
-    const std::vector<std::pair<int, juce::MidiMessage>> notes {
-        { 0, juce::MidiMessage::noteOn(10, 38, (juce::uint8) 100) },     { 4800, juce::MidiMessage::noteOn(10, 40, (juce::uint8) 80) },
-        { 9630, juce::MidiMessage::noteOn(10, 37, (juce::uint8) 110) },  { 14400, juce::MidiMessage::noteOn(10, 38, (juce::uint8) 127) },
-        { 16000, juce::MidiMessage::noteOn(10, 38, (juce::uint8) 127) }, { 17601, juce::MidiMessage::noteOn(10, 38, (juce::uint8) 127) },
-    };
-
-    std::vector<float> out;
-    juce::AudioBuffer<float> buffer(2, block);
-    juce::MidiBuffer midi;
-    auto* damping = proc.getValueTreeState().getParameter("damping");
-    for (int start = 0; start < length; start += block)
-    {
-        if (start == 7200)
-            damping->setValueNotifyingHost(damping->convertTo0to1(60.0f));
-        midi.clear();
-        for (const auto& [at, message] : notes)
-            if (at >= start && at < start + block)
-                midi.addEvent(message, at - start);
-        buffer.clear();
-        proc.processBlock(buffer, midi);
-        out.insert(out.end(), buffer.getReadPointer(0), buffer.getReadPointer(0) + block);
-    }
-
-    const auto reference = goldenDir / "plugin-48k.wav";
-    if (updating())
-    {
-        writeFloatWav(reference, out, rate);
-        std::cout << "golden plugin-48k: regenerated\n";
-        return;
-    }
-
-    const auto ref = readWav(reference);
-    REQUIRE(ref.opened);
-    REQUIRE(ref.length == (long long) out.size());
-    CHECK(peakOf(ref.samples) > 1.0e-3f);
-    const auto d = compare({ ref.samples }, { out });
-    report("plugin-48k", d);
-    CHECK(d.differing == 0);
 }
 
 TEST_CASE("a one-ulp change of one coefficient of the default drum fails the goldens", "[golden]")
