@@ -1,7 +1,7 @@
 #include "KeepUp.h"
 
 #include "Drum.h"
-#include "DrumConfig.h"
+#include "DrumSession.h"
 
 #include <algorithm>
 #include <array>
@@ -9,6 +9,7 @@
 #include <cmath>
 #include <exception>
 #include <memory>
+#include <span>
 
 #if defined(__SSE__) || defined(__x86_64__) || defined(_M_X64)
 #include <xmmintrin.h>
@@ -46,7 +47,7 @@ bool keepsUp(const KeepUpFigures& f) noexcept
     return ! f.cutShort && f.audioSeconds > 0.0 && f.load <= kKeepUpMaxLoad && f.worstBlockShare <= kKeepUpMaxWorstBlock;
 }
 
-KeepUpFigures measureKeepUp(Drum& drum, int blockSize, const std::function<bool()>& cancelled)
+KeepUpFigures measureKeepUp(DrumSession& session, int blockSize, const std::function<bool()>& cancelled)
 {
     using Clock = std::chrono::steady_clock;
     const FlushDenormals flush;
@@ -54,8 +55,8 @@ KeepUpFigures measureKeepUp(Drum& drum, int blockSize, const std::function<bool(
     KeepUpFigures f;
     blockSize = std::max(1, blockSize);
     f.blockSize = blockSize;
-    const double rate = drum.sampleRate();
-    if (! (rate > 0.0))
+    const double rate = session.drumPlayer().sampleRate();
+    if (session.drumPlayer().drum() == nullptr || ! (rate > 0.0))
         return f;
 
     const int probeSamples = (int) std::ceil(kProbeSeconds * rate);
@@ -65,7 +66,7 @@ KeepUpFigures measureKeepUp(Drum& drum, int blockSize, const std::function<bool(
     constexpr int chunk = 256; // cancellation and the cap are looked at this often
     std::array<float, chunk> scratch {};
 
-    drum.reset();
+    session.releaseResources(); // from silence
     Clock::duration total {}, worst {};
     long rendered = 0;
     bool stopped = false;
@@ -83,10 +84,10 @@ KeepUpFigures measureKeepUp(Drum& drum, int blockSize, const std::function<bool(
                 break;
             }
             const int n = std::min(chunk, blockSize - done);
+            const bool strike = b == unstruckBlocks && done == 0;
+            const PlayerEvent note = PlayerEvent::noteOn(0, 38, 127);
             const auto start = Clock::now();
-            if (b == unstruckBlocks && done == 0)
-                drum.playNote(38, 127);
-            drum.process(scratch.data(), n);
+            session.process(scratch.data(), n, strike ? std::span(&note, 1) : std::span<const PlayerEvent> {});
             block += Clock::now() - start;
             done += n;
         }
@@ -96,7 +97,7 @@ KeepUpFigures measureKeepUp(Drum& drum, int blockSize, const std::function<bool(
         if (done > 0)
             worst = std::max(worst, done == blockSize ? block : block * blockSize / done);
     }
-    drum.reset();
+    session.releaseResources();
 
     const double seconds = std::chrono::duration<double>(total).count();
     f.audioSeconds = (double) rendered / rate;
@@ -217,13 +218,15 @@ void KeepUpCheck::run()
         bool finished = true;
         try
         {
-            const auto built = buildDrum(params, rate);
-            Drum& drum = *built;
+            // The drum as a host plays it: a session of its own (built with buildDrum), its parameters as asked.
+            DrumSession probe(DrumSession::Mode::render);
+            probe.setParameters(params);
+            probe.prepareAndStart(rate, q.blockSize);
             if (cancel.load())
                 finished = false;
             else
             {
-                v.figures = measure(drum, q.blockSize, [this] { return cancel.load(std::memory_order_relaxed); });
+                v.figures = measure(probe, q.blockSize, [this] { return cancel.load(std::memory_order_relaxed); });
                 finished = ! cancel.load() || v.figures.cutShort;
                 v.state = keepsUp(v.figures) ? State::keepsUp : State::tooSlow;
             }

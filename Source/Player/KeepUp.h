@@ -1,7 +1,7 @@
 #pragma once
 // Whether a drum keeps up in real time on this machine, by measurement: a short render of the
-// drum itself (unstruck, then a fortissimo strike), timed block by block in the host's block
-// size. KeepUpCheck runs these measurements on a thread of its own and remembers their
+// drum through a session as a host plays it (unstruck, then a fortissimo strike), timed block by
+// block in the host's block size. KeepUpCheck runs these measurements on a thread of its own and remembers their
 // verdicts, so that a caller (the plug-in's parameter reader) asks without ever waiting for one.
 // Nothing here runs on the audio thread.
 
@@ -18,7 +18,7 @@
 namespace snaresim
 {
 
-class Drum;
+class DrumSession;
 
 struct KeepUpFigures
 {
@@ -41,10 +41,11 @@ bool keepsUp(const KeepUpFigures& figures) noexcept;
 inline constexpr double kProbeSeconds = 0.1;
 inline constexpr double kProbeComputeCapSeconds = 4.0;
 
-// Times `drum` (from silence: it is reset first, and left reset) in blocks of blockSize samples
-// through Drum::process, with denormals flushed as the plug-in's processBlock does. `cancelled`
-// is polled every few hundred samples; when it says so the figures so far are returned.
-KeepUpFigures measureKeepUp(Drum& drum, int blockSize, const std::function<bool()>& cancelled = {});
+// Times a started session's drum (from silence: it is reset first, and left reset) in blocks of
+// blockSize samples through DrumSession::process, as a host's processBlock calls it, with
+// denormals flushed as processBlock does. `cancelled` is polled every few hundred samples; when
+// it says so the figures so far are returned.
+KeepUpFigures measureKeepUp(DrumSession& session, int blockSize, const std::function<bool()>& cancelled = {});
 
 class KeepUpCheck
 {
@@ -65,8 +66,9 @@ public:
     };
 
     // How a drum is measured: measureKeepUp, or a stand-in for another machine (tests: an
-    // artificial slowdown, a cost model). Called on the check's thread.
-    using Measurement = std::function<KeepUpFigures(Drum&, int blockSize, const std::function<bool()>& cancelled)>;
+    // artificial slowdown, a cost model). Called on the check's thread with a render session
+    // started on the drum in question.
+    using Measurement = std::function<KeepUpFigures(DrumSession&, int blockSize, const std::function<bool()>& cancelled)>;
 
     KeepUpCheck() = default;
     ~KeepUpCheck();

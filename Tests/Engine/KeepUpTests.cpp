@@ -3,10 +3,12 @@
 
 #include "Drum.h"
 #include "DrumConfig.h"
+#include "DrumSession.h"
 #include "KeepUp.h"
 
 #include <catch2/catch.hpp>
 
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -40,8 +42,10 @@ KeepUpCheck::Verdict waitForVerdict(KeepUpCheck& check, const ParameterSet& p, d
 
 TEST_CASE("the keep-up probe times an unstruck and a struck drum in the host's blocks", "[keepup]")
 {
-    Drum drum(makeDrumConfig(fastDrum(), 48000.0));
-    const auto f = measureKeepUp(drum, 256);
+    DrumSession session(DrumSession::Mode::render);
+    session.setParameters(fastDrum());
+    session.prepareAndStart(48000.0, 256);
+    const auto f = measureKeepUp(session, 256);
     CHECK(f.blockSize == 256);
     CHECK_FALSE(f.cutShort);
     // 0.1 s of audio in whole blocks: 19 of 256 samples.
@@ -50,15 +54,18 @@ TEST_CASE("the keep-up probe times an unstruck and a struck drum in the host's b
     CHECK(std::isfinite(f.load));
     CHECK(f.worstBlockShare >= f.load);
     // The drum is left as it was found: reset, silent.
-    for (int n = 0; n < 64; ++n)
-        REQUIRE(drum.step() == 0.0);
+    std::array<float, 64> out {};
+    out.fill(1.0f);
+    session.process(out.data(), (int) out.size(), {});
+    for (const float x : out)
+        REQUIRE(x == 0.0f);
 
     // Large blocks: at least one unstruck and two struck ones.
-    const auto big = measureKeepUp(drum, 8192);
+    const auto big = measureKeepUp(session, 8192);
     CHECK(big.audioSeconds == Approx(3 * 8192 / 48000.0));
 
     // Cancelled at once: nothing rendered, and no verdict of keeping up.
-    const auto none = measureKeepUp(drum, 256, [] { return true; });
+    const auto none = measureKeepUp(session, 256, [] { return true; });
     CHECK(none.audioSeconds == 0.0);
     CHECK_FALSE(keepsUp(none));
 
@@ -128,7 +135,7 @@ TEST_CASE("the keep-up check measures with a stand-in machine, and a question it
     KeepUpCheck check;
     std::atomic<int> calls { 0 };
     // A machine that takes 0.3 s to measure and finds the drum at 0.2 of real time.
-    check.setMeasurement([&calls](Drum&, int blockSize, const std::function<bool()>& cancelled) {
+    check.setMeasurement([&calls](DrumSession&, int blockSize, const std::function<bool()>& cancelled) {
         ++calls;
         KeepUpFigures f;
         for (int i = 0; i < 300 && ! (cancelled && cancelled()); ++i)

@@ -13,7 +13,7 @@ int main(int argc, char* argv[])
     // Quality's real-time fallback sees a machine that keeps up with every drum, so that what
     // the tests render does not depend on how fast this one is; the fallback's own tests give
     // their processors slower machines.
-    SnareSimAudioProcessor::setDefaultQualityMeasurement([](snaresim::Drum&, int blockSize, const std::function<bool()>&) {
+    SnareSimAudioProcessor::setDefaultQualityMeasurement([](snaresim::DrumSession&, int blockSize, const std::function<bool()>&) {
         snaresim::KeepUpFigures f;
         f.audioSeconds = 0.1;
         f.blockSize = blockSize;

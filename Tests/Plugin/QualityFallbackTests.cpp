@@ -24,8 +24,8 @@ constexpr int kBlock = 256;
 // their points do, as the inverse square of the grids' coarseness.
 snaresim::KeepUpCheck::Measurement machine(double atChosen)
 {
-    return [atChosen](snaresim::Drum& drum, int blockSize, const std::function<bool()>&) {
-        const double c = drum.config().batter.gridCoarseness;
+    return [atChosen](snaresim::DrumSession& session, int blockSize, const std::function<bool()>&) {
+        const double c = session.drumPlayer().drum()->config().batter.gridCoarseness;
         snaresim::KeepUpFigures f;
         f.load = atChosen * std::pow(snaresim::gridCoarsenessFor(kChosen) / c, 2.0);
         f.worstBlockShare = 1.2 * f.load;
