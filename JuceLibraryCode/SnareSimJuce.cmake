@@ -46,3 +46,30 @@ target_compile_options(snaresim_juce_config INTERFACE
 if(SNARESIM_JUCE_LTO)
     target_link_libraries(snaresim_juce_config INTERFACE juce::juce_recommended_lto_flags)
 endif()
+
+# snaresim_add_juce_library(LIBRARY lib INTERFACE face MODULES module... [DEFINITIONS def...] [SOURCES src...])
+# A static library `lib` that compiles these JUCE modules (and the sources) once, PRIVATE, with
+# SnareSim's module flags, hidden visibility and Debian's system PNG / JPEG decoders, and an
+# INTERFACE target `face` that re-exports their include directories and compile definitions:
+# linking `face` compiles no JUCE source again.
+function(snaresim_add_juce_library)
+    cmake_parse_arguments(arg "" "LIBRARY;INTERFACE" "MODULES;DEFINITIONS;SOURCES" ${ARGN})
+    add_library(${arg_LIBRARY} STATIC ${arg_SOURCES})
+    target_compile_definitions(${arg_LIBRARY} PRIVATE ${arg_DEFINITIONS})
+    target_link_libraries(${arg_LIBRARY} PRIVATE snaresim_juce_config ${arg_MODULES})
+    if(TARGET juce::pkgconfig_JUCE_IMG_LINUX_DEPS)
+        target_link_libraries(${arg_LIBRARY} PRIVATE juce::pkgconfig_JUCE_IMG_LINUX_DEPS)
+    endif()
+    set_target_properties(${arg_LIBRARY} PROPERTIES
+        VISIBILITY_INLINES_HIDDEN TRUE
+        CXX_VISIBILITY_PRESET hidden
+        C_VISIBILITY_PRESET hidden)
+
+    add_library(${arg_INTERFACE} INTERFACE)
+    target_link_libraries(${arg_INTERFACE} INTERFACE ${arg_LIBRARY})
+    target_include_directories(${arg_INTERFACE} SYSTEM INTERFACE
+        $<TARGET_PROPERTY:${arg_LIBRARY},INCLUDE_DIRECTORIES>)
+    target_compile_definitions(${arg_INTERFACE} INTERFACE
+        $<TARGET_GENEX_EVAL:${arg_LIBRARY},$<TARGET_PROPERTY:${arg_LIBRARY},COMPILE_DEFINITIONS>>)
+    target_compile_features(${arg_INTERFACE} INTERFACE cxx_std_20)
+endfunction()
