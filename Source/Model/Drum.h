@@ -5,8 +5,11 @@
 // the OutsideAir, the CavityModes, the NearFieldAir, the air box), and couplings, each with its
 // own forces, solve and energy (MalletContact, SnareContact with the attached ends,
 // CavityCoupling, OutsideAirCoupling, CavityModesCoupling, NearFieldCoupling, the air box's
-// HeadEmbeddings); the PressureMicrophones listen. step() runs them in a fixed order;
-// energyTerms() lists which of them each ledger term sums. Hosts play it through DrumPlayer.
+// HeadEmbeddings); the PressureMicrophones listen. The air attached to the heads explicitly (the
+// cavity's modes, the outside air, the near field) is one list (AttachedAir.h); the implicit
+// solve's parts are written out. step() runs them in a fixed order;
+// energyTerms() lists which of them each ledger term sums. Clients play it through a
+// DrumSession (Source/Player).
 
 #include "Articulations.h"
 #include "AttachedAir.h"

@@ -1,6 +1,6 @@
 #pragma once
-// The real-time player: everything between a host and the Drum. The plug-in, the renderer and
-// the benchmark all play the drum through it.
+// The real-time player: everything between a session (DrumSession.h, the one door every client
+// plays through) and the Drum.
 //
 //  - parameters: continuous ones are smoothed (about 30 ms) and applied to the running drum
 //    every sub-block of at most 32 samples (Drum::applyLive); toggles and choices apply at
