@@ -3,8 +3,8 @@
 // near field): each a component with the coupling that attaches it, built from the drum's
 // config. Their pressures at time n act in the heads' free updates; once every force on the
 // heads is in, their couplings take q^{n+1} (eq. 22-23 with the air's load explicit). Drum holds
-// them in an AttachedAirs list and steps them in its order: adding one is its own files and one
-// entry of that list (Drum.h).
+// them in one Attachments list (Attachments.h) and steps them in its order: adding one is its own
+// files and one entry of that list (Drum.h).
 //
 // An attachment A provides:
 //   A(const DrumConfig&, Membrane& batter, Membrane& carry, double k)
@@ -19,11 +19,10 @@
 //   void setSpec(const DrumConfig&) noexcept  a live change (Drum::applyLive)
 //   auto energyTerm() const                   its ledger term (EnergyTerm.h)
 
+#include "Attachments.h"
 #include "OutsideAirCoupling.h"
 
 #include <array>
-#include <tuple>
-#include <type_traits>
 
 namespace snaresim
 {
@@ -59,63 +58,6 @@ private:
     std::array<const void*, maxSources> owners {};
     std::array<const double* (*) (const void*, int, int), maxSources> readers {};
     int count = 0;
-};
-
-// The attachments, constructed, stepped and listed in the order given.
-template <class... Attachments>
-class AttachedAirs;
-
-template <>
-class AttachedAirs<>
-{
-public:
-    template <class... Args>
-    explicit AttachedAirs(Args&...)
-    {}
-    template <class F>
-    void each(F&&)
-    {}
-    template <class F>
-    void each(F&&) const
-    {}
-    auto energyTerms() const { return std::tuple {}; }
-};
-
-template <class First, class... Rest>
-class AttachedAirs<First, Rest...>
-{
-public:
-    template <class... Args>
-    explicit AttachedAirs(Args&... args) : first(args...), rest(args...)
-    {}
-
-    template <class F>
-    void each(F&& f)
-    {
-        f(first);
-        rest.each(f);
-    }
-    template <class F>
-    void each(F&& f) const
-    {
-        f(first);
-        rest.each(f);
-    }
-
-    template <class A>
-    const A& get() const
-    {
-        if constexpr (std::is_same_v<A, First>)
-            return first;
-        else
-            return rest.template get<A>();
-    }
-
-    auto energyTerms() const { return std::tuple_cat(std::tuple { first.energyTerm() }, rest.energyTerms()); }
-
-private:
-    First first;
-    AttachedAirs<Rest...> rest;
 };
 
 } // namespace snaresim

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <type_traits>
 
 namespace snaresim
 {
@@ -47,14 +48,6 @@ struct PhaseClock<true>
     }
 };
 
-std::vector<Mallet> makeMallets(const DrumConfig& c, const Membrane& batter, double k)
-{
-    std::vector<Mallet> mallets;
-    mallets.reserve((size_t) c.numMallets);
-    for (int i = 0; i < c.numMallets; ++i)
-        mallets.emplace_back(c.mallet, batter.grid(), k);
-    return mallets;
-}
 } // namespace
 
 // The ledger's terms in column order, eq. (34): H = H_b + H_c + H_M + H_s + the air's, each
@@ -63,10 +56,9 @@ std::vector<Mallet> makeMallets(const DrumConfig& c, const Membrane& batter, dou
 auto Drum::energyTerms() const
 {
     return std::tuple_cat(std::tuple { EnergyTerm("batter", batterHead),                          // eq. (35)
-                                       EnergyTerm("carry", carryHead),                            // eq. (35)
-                                       EnergyTerm("mallets", mallets, malletCoupling),            // eq. (37)
-                                       EnergyTerm("snares", wires, snareCoupling).when(engaged),  // eq. (38)
-                                       EnergyTerm("cavity", cavityAir) },                         // (K/2) dV^{n+1} dV^n
+                                       EnergyTerm("carry", carryHead) },                          // eq. (35)
+                          contacts.energyTerms(),                                                 // the mallets (37), the snares (38)
+                          std::tuple { EnergyTerm("cavity", cavityAir) },                         // (K/2) dV^{n+1} dV^n
                           attachedAir.energyTerms(),                                              // AttachedAir.h
                           std::tuple { EnergyTerm("airbox", boxAir).listedIf(boxAir.active()) }); // eq. (36)
 }
@@ -74,16 +66,16 @@ auto Drum::energyTerms() const
 Drum::Drum(const DrumConfig& config)
     : cfg(validated(config)), k(1.0 / config.sampleRate_Hz), cavityAir(cfg.cavity, cfg.batter.radius_m),
       batterHead(cfg.batter, k, cfg.kineticReserve(true)), carryHead(cfg.carry, k, cfg.kineticReserve(false)),
-      wires(cfg.fittedSnares(), cfg.carry.radius_m, k), snareCoupling(cfg.snares, wires, carryHead),
-      mallets(makeMallets(cfg, batterHead, k)), malletCoupling(batterHead, mallets), cavityCoupling(batterHead, carryHead, cavityAir),
-      attachedAir(cfg, batterHead, carryHead, k), pressureMics(cfg.mics, cfg.cavity, cfg.sampleRate_Hz, batterHead, carryHead),
-      toHost(cfg.outputFactor()), engaged(cfg.snares.engaged)
+      contacts(cfg, batterHead, carryHead, k), mallets(contacts.get<MalletsOnBatter>().mallets),
+      malletCoupling(contacts.get<MalletsOnBatter>().coupling), wires(contacts.get<SnaresOnCarry>().wires),
+      snareCoupling(contacts.get<SnaresOnCarry>().coupling), engaged(contacts.get<SnaresOnCarry>().engaged),
+      cavityCoupling(batterHead, carryHead, cavityAir), attachedAir(cfg, batterHead, carryHead, k),
+      pressureMics(cfg.mics, cfg.cavity, cfg.sampleRate_Hz, batterHead, carryHead), toHost(cfg.outputFactor())
 {
     if (cfg.cavity.model == AirModel::airbox)
     {
         boxAir.build(cfg.airBoxSpec(), cfg.airBox.threads, cfg.cavity.shellDepth_m, k, batterHead, carryHead);
         placeAirMics(cfg);
-        wiresSaved = wires.uNext;
         stepProfile.path = StepPath::airBox;
     }
     const auto terms = energyTerms();
@@ -283,39 +275,29 @@ template <class Lap>
     lap(StepPhase::batterFree);
     carryHead.computeFree(cavityCoupling.pressureOnCarry() + c.p0, c.px, c.py); // eq. (23) without snare and end forces
     lap(StepPhase::carryFree);
-    if (engaged)
-    {
-        wires.computeFree(); // eq. (28) without collision and end forces
-        lap(StepPhase::wiresFree);
-    }
-    for (auto& ml : mallets)
-        ml.computeFree(); // eq. (43) without the contact force
-    lap(StepPhase::malletsFree);
+    contacts.each([&](auto& contact) { contact.computeFree(lap); }); // the mallets (eq. 43), the wires (eq. 28)
 
     // 2. The couplings: each solves for its forces and adds them to the free updates.
-    const auto mallet = malletCoupling.step(); // eq. (44)-(45)
-    lap(StepPhase::malletContact);
-    if (engaged)
-    {
-        const auto snare = snareCoupling.step(); // eq. (48)-(50)
-        noteSolves(mallet, &snare);
-    }
-    else
-        noteSolves(mallet, nullptr);
-    lap(StepPhase::snareContact);
+    ContactSolves solves;
+    contacts.each([&](auto& contact) {
+        contact.solve(solves); // eq. (44)-(45), (48)-(50)
+        contact.lapSolve(lap);
+    });
+    noteSolves(solves);
 }
 
-void Drum::noteSolves(const ContactSolveResult& mallet, const SnareSolveResult* snare)
+void Drum::noteSolves(const ContactSolves& solves)
 {
-    int iterations = mallet.iterations;
-    bool fallback = mallet.fallback;
-    if (snare)
+    int iterations = solves.mallets.iterations;
+    bool fallback = solves.mallets.fallback;
+    if (solves.snaresSolved)
     {
-        iterations = std::max(iterations, snare->iterations);
-        fallback = fallback || snare->fallback;
-        stats.maxSnareIterations = std::max(stats.maxSnareIterations, snare->iterations);
-        stats.snareContacts = snare->contacts;
-        stats.maxSnarePenetration_m = std::max(stats.maxSnarePenetration_m, snare->maxPenetration_m);
+        const auto& snare = solves.snares;
+        iterations = std::max(iterations, snare.iterations);
+        fallback = fallback || snare.fallback;
+        stats.maxSnareIterations = std::max(stats.maxSnareIterations, snare.iterations);
+        stats.snareContacts = snare.contacts;
+        stats.maxSnarePenetration_m = std::max(stats.maxSnarePenetration_m, snare.maxPenetration_m);
     }
     if (iterations > 0)
     {
@@ -337,43 +319,30 @@ template <class Lap>
     lap(StepPhase::batterFree);
     carryHead.computeFree();
     lap(StepPhase::carryFree);
-    if (engaged)
-    {
-        wires.computeFree();
-        lap(StepPhase::wiresFree);
-    }
-    for (auto& ml : mallets)
-        ml.computeFree();
-    lap(StepPhase::malletsFree);
+    contacts.each([&](auto& contact) { contact.computeFree(lap); });
 
-    // 2. Each head with its air (eq. 7-8) and its contacts, solved jointly (DrumAir.h).
-    for (size_t i = 0; i < mallets.size(); ++i)
-        malletsSaved[i] = mallets[i].zNext;
-    ContactSolveResult mallet;
-    const auto onBatter = boxAir.solveBatter([&] { mallet = malletCoupling.step(); }, // eq. (44)-(45)
-                                             [&] {
-                                                 for (size_t i = 0; i < mallets.size(); ++i)
-                                                     mallets[i].zNext = malletsSaved[i];
-                                             });
+    // 2. Each head with its air (eq. 7-8) and its contacts, solved jointly (DrumAir.h): the
+    //    contacts on that head tried again from their saved free updates until the air agrees.
+    ContactSolves solves;
+    auto jointly = [&](auto head) {
+        auto onHead = [&](auto&& f) {
+            contacts.each([&](auto& contact) {
+                if constexpr (std::decay_t<decltype(contact)>::head == std::decay_t<decltype(head)>::value)
+                    f(contact);
+            });
+        };
+        onHead([](auto& contact) { contact.saveTrial(); });
+        auto trial = [&] { onHead([&](auto& contact) { contact.solve(solves); }); };
+        auto restore = [&] { onHead([](auto& contact) { contact.restoreTrial(); }); };
+        if constexpr (std::decay_t<decltype(head)>::value == 0)
+            return boxAir.solveBatter(trial, restore);
+        else
+            return boxAir.solveCarry(trial, restore);
+    };
+    const auto onBatter = jointly(std::integral_constant<int, 0> {});
     lap(StepPhase::batterJoint);
-    JointSolveResult onCarry;
-    if (engaged)
-    {
-        wiresSaved = wires.uNext;
-        snareCoupling.saveTrial();
-        SnareSolveResult snare;
-        onCarry = boxAir.solveCarry([&] { snare = snareCoupling.step(); }, // eq. (48)-(50)
-                                    [&] {
-                                        wires.uNext = wiresSaved;
-                                        snareCoupling.restoreTrial();
-                                    });
-        noteSolves(mallet, &snare);
-    }
-    else
-    {
-        onCarry = boxAir.solveCarry([] {}, [] {});
-        noteSolves(mallet, nullptr);
-    }
+    const JointSolveResult onCarry = jointly(std::integral_constant<int, 1> {});
+    noteSolves(solves);
     stats.maxAirTrials = std::max({ stats.maxAirTrials, onBatter.trials, onCarry.trials });
     stats.airCapped += (onBatter.capped ? 1 : 0) + (onCarry.capped ? 1 : 0);
     stats.airTrials += onBatter.trials + onCarry.trials;
@@ -453,11 +422,7 @@ double Drum::stepWith(Lap& lap)
     ++samplesRendered;
     batterHead.advance();
     carryHead.advance();
-    if (engaged)
-    {
-        wires.advance();
-        snareCoupling.advance();
-    }
+    contacts.each([](auto& contact) { contact.advance(); });
     cavityAir.advance();
     attachedAir.each([](auto& air) {
         if (air.active())
@@ -465,8 +430,6 @@ double Drum::stepWith(Lap& lap)
     });
     if (boxAir.active())
         boxAir.advance();
-    for (auto& ml : mallets)
-        ml.advance();
     lap(StepPhase::advance);
     return signals.mix;
 }
@@ -512,13 +475,10 @@ void Drum::reset()
 {
     batterHead.clear();
     carryHead.clear();
-    wires.clear();
-    snareCoupling.clear();
+    contacts.each([](auto& contact) { contact.clear(); });
     cavityAir.clear();
     attachedAir.each([](auto& air) { air.clear(); });
     boxAir.clear();
-    for (auto& m : mallets)
-        m.park();
     ledger.clearValues();
     signals = {};
     pressureMics.clear();

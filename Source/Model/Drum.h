@@ -5,9 +5,10 @@
 // the OutsideAir, the CavityModes, the NearFieldAir, the air box), and couplings, each with its
 // own forces, solve and energy (MalletContact, SnareContact with the attached ends,
 // CavityCoupling, OutsideAirCoupling, CavityModesCoupling, NearFieldCoupling, the air box's
-// HeadEmbeddings); the PressureMicrophones listen. The air attached to the heads explicitly (the
-// cavity's modes, the outside air, the near field) is one list (AttachedAir.h); the implicit
-// solve's parts are written out. step() runs them in a fixed order;
+// HeadEmbeddings); the PressureMicrophones listen. The parts in contact with a head (the mallets,
+// the snares: HeadContact.h) and the air attached to the heads explicitly (the cavity's modes, the
+// outside air, the near field: AttachedAir.h) are two lists; the heads, the cavity and the air
+// box are written out. step() runs them in a fixed order;
 // energyTerms() lists which of them each ledger term sums. Clients play it through a
 // DrumSession (Source/Player).
 
@@ -16,19 +17,19 @@
 #include "AttachedCavityModes.h"
 #include "AttachedNearField.h"
 #include "AttachedOutsideAir.h"
+#include "Attachments.h"
 #include "Cavity.h"
 #include "CavityCoupling.h"
 #include "DrumAir.h"
 #include "DrumConfig.h"
 #include "DrumSnapshot.h"
 #include "EnergyLedger.h"
+#include "HeadContact.h"
 #include "HostRateInterpolator.h"
-#include "Mallet.h"
-#include "MalletContact.h"
+#include "MalletsOnBatter.h"
 #include "Membrane.h"
 #include "PressureMicrophones.h"
-#include "SnareContact.h"
-#include "SnareWires.h"
+#include "SnaresOnCarry.h"
 #include "StepProfile.h"
 
 #include <array>
@@ -172,7 +173,7 @@ private:
     void stepCouplings(Lap& lap); // steps 1-2 of step() (free updates, couplings)
     template <class Lap>
     void stepCouplingsInAir(Lap& lap); // the same with the air box
-    void noteSolves(const ContactSolveResult& mallet, const SnareSolveResult* snare);
+    void noteSolves(const ContactSolves& solves);
     void retrieveRisingMallets();
     void placeAirMics(const DrumConfig& c); // the air box's microphones (DrumConfig::airMicPoints)
 
@@ -183,17 +184,19 @@ private:
     // Components and the couplings between them (each coupling after what it couples).
     Cavity cavityAir;               // component: the enclosed air as one pressure
     Membrane batterHead, carryHead; // components
-    SnareWires wires;               // component
-    SnareContact snareCoupling;     // coupling: wires - carry head
-    std::vector<Mallet> mallets;    // components; never resized after construction
-    MalletContact malletCoupling;   // coupling: mallets - batter
-    CavityCoupling cavityCoupling;  // coupling: heads - cavity
+    // The parts in contact with a head, each a component with its contact coupling (HeadContact.h),
+    // built, stepped and listed in the ledger in this order.
+    Attachments<MalletsOnBatter, SnaresOnCarry> contacts;
+    std::vector<Mallet>& mallets;  // the contacts' own: never resized after construction
+    MalletContact& malletCoupling; // coupling: mallets - batter
+    SnareWires& wires;             // component
+    SnareContact& snareCoupling;   // coupling: wires - carry head
+    bool& engaged;                 // the snares on the carry head
+    CavityCoupling cavityCoupling; // coupling: heads - cavity
     // The air models attached to the heads explicitly, each a component with its coupling
     // (AttachedAir.h), built, stepped and listed in the ledger in this order; inactive ones are skipped.
-    AttachedAirs<AttachedCavityModes, AttachedOutsideAir, AttachedNearField> attachedAir;
-    DrumAir boxAir;                 // component (the air box) with its couplings to the heads; inactive without
-    std::vector<double> wiresSaved; // air box: the wires' free u^{n+1}, for the joint solve's trials
-    std::array<double, MalletContact::maxMallets> malletsSaved {};
+    Attachments<AttachedCavityModes, AttachedOutsideAir, AttachedNearField> attachedAir;
+    DrumAir boxAir; // component (the air box) with its couplings to the heads; inactive without
 
     PressureMicrophones pressureMics; // the microphones: a listener, no energy, no force
     HostRateInterpolator toHost;      // the signals at the host's rate
@@ -205,7 +208,6 @@ private:
     bool trackEnergy = false;
     bool profiling = false;
     StepProfile stepProfile;
-    bool engaged = true;
     int nextMallet = 0;
     long long samplesRendered = 0;
 };
