@@ -60,4 +60,26 @@ private:
     int count = 0;
 };
 
+// What every attached air model shares: its component and the coupling that attaches it, built
+// in that order (the coupling from the component), and the component's activity, time step and
+// clearing.
+template <class Component, class Coupling>
+class AttachedPair
+{
+public:
+    bool active() const { return part.active(); }
+    void advance() { part.advance(); }
+    void clear() { part.clear(); }
+    const Component& component() const { return part; }
+
+protected:
+    // makeComponent() and makeCoupling(Component&) each return the part they build.
+    template <class MakeComponent, class MakeCoupling>
+    AttachedPair(MakeComponent&& makeComponent, MakeCoupling&& makeCoupling) : part(makeComponent()), coupling(makeCoupling(part))
+    {}
+
+    Component part;
+    Coupling coupling;
+};
+
 } // namespace snaresim

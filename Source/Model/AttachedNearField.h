@@ -11,17 +11,19 @@
 namespace snaresim
 {
 
-class AttachedNearField
+class AttachedNearField : public AttachedPair<NearFieldAir, NearFieldCoupling>
 {
 public:
     AttachedNearField(const DrumConfig& c, Membrane& batter, Membrane& carry, double k)
-        : air(c.nearFieldSpec(), k), coupling(batter, carry, air, c.cavity.modeCellSize_m, c.outside.nearFieldCellSize_m)
+        : AttachedPair([&] { return NearFieldAir(c.nearFieldSpec(), k); },
+                       [&](NearFieldAir& air) {
+                           return NearFieldCoupling(batter, carry, air, c.cavity.modeCellSize_m, c.outside.nearFieldCellSize_m);
+                       })
     {}
 
-    bool active() const { return air.active(); }
     void beforeHeads(HeadPressure&, HeadPressure&) noexcept
     {
-        air.computeFree();
+        part.computeFree();
         coupling.applyPressures(); // the near field at n, on the heads' cells
     }
     void afterHeads(const CellSums& taken) noexcept // q^{n+1}, on the cell sums taken already where they fit
@@ -29,16 +31,8 @@ public:
         coupling.step({ taken.at(0, coupling.cellSide(0)), taken.at(1, coupling.cellSide(1)) });
     }
     const double* blockSums(int head, int side) const { return coupling.blockSums(head, side); }
-    void advance() noexcept { air.advance(); }
-    void clear() noexcept { air.clear(); }
-    void setSpec(const DrumConfig& c) noexcept { air.setSpec(c.nearFieldSpec()); }
-    auto energyTerm() const { return EnergyTerm("near_field", air).listedIf(air.active()); } // NearFieldAir.h
-
-    const NearFieldAir& component() const { return air; }
-
-private:
-    NearFieldAir air;
-    NearFieldCoupling coupling;
+    void setSpec(const DrumConfig& c) noexcept { part.setSpec(c.nearFieldSpec()); }
+    auto energyTerm() const { return EnergyTerm("near_field", part).listedIf(part.active()); } // NearFieldAir.h
 };
 
 } // namespace snaresim

@@ -13,33 +13,25 @@
 namespace snaresim
 {
 
-class AttachedOutsideAir
+class AttachedOutsideAir : public AttachedPair<OutsideAir, OutsideAirCoupling>
 {
 public:
     AttachedOutsideAir(const DrumConfig& c, Membrane& batter, Membrane& carry, double k)
-        : air(c.cavity.model == AirModel::airbox ? OutsideAirSpec {} : c.outside, c.batter, c.carry, k), coupling(batter, carry, air)
+        : AttachedPair([&] { return OutsideAir(c.cavity.model == AirModel::airbox ? OutsideAirSpec {} : c.outside, c.batter, c.carry, k); },
+                       [&](OutsideAir& air) { return OutsideAirCoupling(batter, carry, air); })
     {}
 
-    bool active() const { return air.active(); }
     void beforeHeads(HeadPressure& onBatter, HeadPressure& onCarry) noexcept
     {
-        air.computeFree();
+        part.computeFree();
         const HeadPressure b = coupling.onBatter(), c = coupling.onCarry();
         onBatter = { onBatter.p0 + b.p0, onBatter.px + b.px, onBatter.py + b.py };
         onCarry = { onCarry.p0 + c.p0, onCarry.px + c.px, onCarry.py + c.py };
     }
     void afterHeads(const CellSums&) noexcept { coupling.step(); } // q^{n+1}
     const double* blockSums(int, int) const { return nullptr; }
-    void advance() noexcept { air.advance(); }
-    void clear() noexcept { air.clear(); }
     void setSpec(const DrumConfig&) noexcept {}
-    auto energyTerm() const { return EnergyTerm("outside", air).listedIf(air.active()); } // OutsideAir.h
-
-    const OutsideAir& component() const { return air; }
-
-private:
-    OutsideAir air;
-    OutsideAirCoupling coupling;
+    auto energyTerm() const { return EnergyTerm("outside", part).listedIf(part.active()); } // OutsideAir.h
 };
 
 } // namespace snaresim

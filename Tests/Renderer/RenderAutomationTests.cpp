@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 using namespace rendertest;
@@ -103,18 +104,18 @@ TEST_CASE("bad input: --set-at", "[renderer][errors][automation]")
 {
     TempDir dir;
     const auto out = (dir.out() / "out.wav").string();
-    auto bad = [&](std::vector<std::string> more, const std::string& mentions) {
-        std::vector<std::string> args { "-o", out, "--hit", "0:100", "--seconds", "0.2" };
-        args.insert(args.end(), more.begin(), more.end());
-        requireRejected(dir, args, mentions);
+    // Each value of --set-at, and what the one-line error must name. Out of range and
+    // unbuildable values are refused before anything is written.
+    const std::pair<const char*, const char*> cases[] = {
+        { "0.1", "--set-at" },
+        { "x:snare_count=3", "--set-at time" },
+        { "-1:snare_count=3", "--set-at" },
+        { "0.1:nope=3", "nope" },
+        { "0.1:snare_count=2.5", "snare_count" },
+        { "0.1:snare_count=1000", "--set-at 0.1:snare_count=1000" },
+        { "0.1:snares_engaged=maybe", "maybe" },
+        { "0.1:shell_depth=1 mm", "--set-at 0.1:shell_depth=1 mm" },
     };
-    bad({ "--set-at", "0.1" }, "--set-at");
-    bad({ "--set-at", "x:snare_count=3" }, "--set-at time");
-    bad({ "--set-at", "-1:snare_count=3" }, "--set-at");
-    bad({ "--set-at", "0.1:nope=3" }, "nope");
-    bad({ "--set-at", "0.1:snare_count=2.5" }, "snare_count");
-    bad({ "--set-at", "0.1:snare_count=1000" }, "--set-at 0.1:snare_count=1000");
-    bad({ "--set-at", "0.1:snares_engaged=maybe" }, "maybe");
-    // Out of range: refused before anything is written.
-    bad({ "--set-at", "0.1:shell_depth=1 mm" }, "--set-at 0.1:shell_depth=1 mm");
+    for (const auto& [value, mentions] : cases)
+        requireRejected(dir, { "-o", out, "--hit", "0:100", "--seconds", "0.2", "--set-at", value }, mentions);
 }
