@@ -1,6 +1,5 @@
 #include "KeepUp.h"
 
-#include "Drum.h"
 #include "DrumSession.h"
 
 #include <algorithm>

@@ -5,10 +5,6 @@
 #include "PluginState.h"
 #include "Presets.h"
 
-#include "DrumConfig.h"
-
-#include <algorithm>
-#include <cmath>
 #include <string>
 
 namespace
