@@ -51,6 +51,18 @@ bool waitForBandwidth(SnareSimAudioProcessor& proc, double bandwidth, double tim
     return true;
 }
 
+// Renders silent blocks while the rung that plays is still being measured (it plays meanwhile),
+// or the time is up.
+void waitWhileMeasured(SnareSimAudioProcessor& proc, double timeoutSeconds = 60.0)
+{
+    const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeoutSeconds);
+    while (proc.qualityNotice().endsWith("while it is measured") && std::chrono::steady_clock::now() < until)
+    {
+        render(proc, kBlock, kBlock);
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+}
+
 // The first rungs below the chosen Quality.
 double rung(int n) { return kChosen * std::pow(0.8, n); }
 } // namespace
@@ -67,6 +79,7 @@ TEST_CASE("in real time a Quality this machine cannot keep up with gives way to 
     prepare(proc, 48000.0, kBlock);
 
     REQUIRE(waitForBandwidth(proc, rung(2)));
+    waitWhileMeasured(proc); // (the rung plays while it is measured, and after)
     CHECK(proc.playingBandwidth() == Approx(rung(2)).epsilon(1e-6));
     CHECK(proc.currentParameters().get(ParamId::bandwidth) == Approx(rung(2)).epsilon(1e-6));
     CHECK(proc.parameterValues().get(ParamId::bandwidth) == Approx(kChosen).epsilon(1e-6)); // the host's is the chosen one
@@ -135,13 +148,7 @@ TEST_CASE("Quality's fallback: a machine that keeps up plays the chosen Quality,
         prepare(proc, 48000.0, kBlock);
         const double least = snaresim::spec(ParamId::bandwidth).minValue;
         REQUIRE(waitForBandwidth(proc, least));
-        // (the lowest rung plays while it is measured, and after)
-        const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-        while (proc.qualityNotice().endsWith("while it is measured") && std::chrono::steady_clock::now() < until)
-        {
-            render(proc, kBlock, kBlock);
-            std::this_thread::sleep_for(std::chrono::milliseconds(2));
-        }
+        waitWhileMeasured(proc); // (the lowest rung plays while it is measured, and after)
         CHECK(proc.qualityNotice() ==
               "Quality: 7.8 kHz needs 20x real time here; 3.8 kHz plays and needs 4.90x real time: it may drop out");
         CHECK(proc.qualityMeasurements() == 5);
