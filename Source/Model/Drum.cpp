@@ -70,9 +70,7 @@ Drum::Drum(const DrumConfig& config)
       malletCoupling(contacts.get<MalletsOnBatter>().coupling), wires(contacts.get<SnaresOnCarry>().wires),
       snareCoupling(contacts.get<SnaresOnCarry>().coupling), engaged(contacts.get<SnaresOnCarry>().engaged),
       cavityCoupling(batterHead, carryHead, cavityAir), attachedAir(cfg, batterHead, carryHead, k),
-      pressureMics(cfg.mics, cfg.cavity, cfg.sampleRate_Hz, batterHead, carryHead), closeMics { MicResponse(cfg.sampleRate_Hz),
-                                                                                                MicResponse(cfg.sampleRate_Hz) },
-      toHost(cfg.outputFactor())
+      pressureMics(cfg.mics, cfg.cavity, cfg.sampleRate_Hz, batterHead, carryHead), toHost(cfg.outputFactor())
 {
     if (cfg.cavity.model == AirModel::airbox)
     {
@@ -413,13 +411,8 @@ double Drum::stepWith(Lap& lap)
     // the cells' sums of this step, where a coupling has taken them already
     pressureMics.listen(batterHead, carryHead, { taken.at(0, pressureMics.cellSide(0)), taken.at(1, pressureMics.cellSide(1)) });
     const bool boxMics = boxAir.active() && cfg.airBox.numMics == 0; // the box's microphones are the drum's
-    const double top = boxMics ? boxAir.micPressure(0) : pressureMics.pressure(PressureMicrophones::top);
-    const double bottom = boxMics ? boxAir.micPressure(1) : pressureMics.pressure(PressureMicrophones::bottom);
-    // the close microphones' transducers run whichever plays, so a switch between them is seamless
-    const double topHeard = closeMics[0].process(top), bottomHeard = closeMics[1].process(bottom);
-    const bool dynamic = cfg.mics.closeMics == MicTransducer::dynamicCardioid;
-    signals.top_Pa = dynamic ? topHeard : top;
-    signals.bottom_Pa = dynamic ? bottomHeard : bottom;
+    signals.top_Pa = boxMics ? boxAir.micPressure(0) : pressureMics.pressure(PressureMicrophones::top);
+    signals.bottom_Pa = boxMics ? boxAir.micPressure(1) : pressureMics.pressure(PressureMicrophones::bottom);
     signals.room_Pa = boxMics ? boxAir.micPressure(2) : pressureMics.pressure(PressureMicrophones::room);
     const auto& m = cfg.mics;
     signals.mix = cfg.outputGain * (m.mixTop * m.topGain * signals.top_Pa + m.mixBottom * m.bottomGain * signals.bottom_Pa +
@@ -489,8 +482,6 @@ void Drum::reset()
     ledger.clearValues();
     signals = {};
     pressureMics.clear();
-    for (MicResponse& r : closeMics)
-        r.clear();
     toHost.clear();
     hostPhase = lastPhase = 0;
     samplesRendered = 0;

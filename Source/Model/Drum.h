@@ -28,7 +28,6 @@
 #include "HostRateInterpolator.h"
 #include "MalletsOnBatter.h"
 #include "Membrane.h"
-#include "MicTransducer.h"
 #include "PressureMicrophones.h"
 #include "SnaresOnCarry.h"
 #include "StepProfile.h"
@@ -62,8 +61,7 @@ enum class Mic
 };
 
 // Signals of one step: the sound pressure at the microphones (MicSpec: PressureMicrophones.h;
-// in the air box, the box's own pressure there when its microphones are the drum's) as their
-// transducers give it (MicTransducer.h; Pa at 1 kHz), and the mix.
+// in the air box, the box's own pressure there when its microphones are the drum's), and the mix.
 struct MicSignals
 {
     double top_Pa = 0.0;
@@ -200,10 +198,9 @@ private:
     Attachments<AttachedCavityModes, AttachedOutsideAir, AttachedNearField> attachedAir;
     DrumAir boxAir; // component (the air box) with its couplings to the heads; inactive without
 
-    PressureMicrophones pressureMics;     // the microphones: a listener, no energy, no force
-    std::array<MicResponse, 2> closeMics; // the top and bottom microphones' transducers (MicSpec::closeMics)
-    HostRateInterpolator toHost;          // the signals at the host's rate
-    int hostPhase = 0, lastPhase = 0;     // of the next and the last host sample, 0 .. factor - 1
+    PressureMicrophones pressureMics; // the microphones: a listener, no energy, no force
+    HostRateInterpolator toHost;      // the signals at the host's rate
+    int hostPhase = 0, lastPhase = 0; // of the next and the last host sample, 0 .. factor - 1
     EnergyLedger ledger;
     int malletsTerm = -1, snaresTerm = -1; // the ledger terms a strike and the snares switch change
     SolverStats stats;

@@ -362,7 +362,6 @@ DrumConfig mapParametersAt(const ParameterSet& p, double sampleRate_Hz, double c
     c.mics.mixTop = p.get(ParamId::micTop);
     c.mics.mixBottom = p.get(ParamId::micBottom);
     c.mics.mixRoom = p.get(ParamId::micRoom);
-    c.mics.closeMics = p.get(ParamId::closeMics) >= 0.5 ? MicTransducer::dynamicCardioid : MicTransducer::pressure;
     // The top mic's point off the snares' line (the x axis); the bottom mic's close to it.
     const double R = c.batter.radius_m, H = c.cavity.shellDepth_m;
     const double top = p.get(ParamId::micTopPosition) * R, bottom = p.get(ParamId::micBottomPosition) * R;

@@ -103,9 +103,6 @@ constexpr std::array<ParameterSpec, kNumParameters> kSpecs {{
     { P::nearField, "near_field", "Near field", "", 0.0, 1.0, 0.0, S::linear, N::newModel,
       "With the outside air: the air sloshing beside the heads weighs on their higher modes and lowers them 7-11 %, as the air box does; the drum then costs about 1.6 times as much (BENCHMARKS.md), so it is off by default; the air box has its own",
       B, "off|on", "heads" },
-    { P::closeMics, "close_mics", "Close mics", "", 0.0, 1.0, 0.0, S::linear, N::coefficients,
-      "The top and bottom microphones: pressure microphones (the sound pressure itself), or dynamic cardioids with the published response of the Shure SM57, the usual snare microphone (rolled off below 100 Hz and above 10 kHz, a presence peak near 5 kHz; without the proximity effect); the room microphone is a pressure microphone",
-      K, "pressure|dynamic", "output" },
 }};
 // clang-format on
 

@@ -66,8 +66,6 @@ enum class ParamId : std::size_t
     keepUp,
     // the near field of the outside air, apart from its channels (appended likewise)
     nearField,
-    // the close microphones' transducer (appended likewise)
-    closeMics,
     count
 };
 

@@ -3,7 +3,6 @@
 // "From the schema": the model's mapping of the parameters fills the field in (DrumConfig.h).
 
 #include "AirPoint.h"
-#include "MicTransducer.h"
 
 namespace snaresim
 {
@@ -22,7 +21,6 @@ struct MicSpec
     double bottomGain = 3.7e-3;                          // output per Pa
     double roomGain = 0.041;                             // output per Pa (the room)
     double mixTop = 0.0, mixBottom = 0.0, mixRoom = 0.0; // weights of the mixed output (from the schema)
-    MicTransducer closeMics = MicTransducer::pressure;   // the top and bottom microphones' (the room one is a pressure microphone)
 };
 
 } // namespace snaresim
