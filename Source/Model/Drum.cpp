@@ -66,8 +66,7 @@ auto Drum::energyTerms() const
 Drum::Drum(const DrumConfig& config)
     : cfg(validated(config)), k(1.0 / config.sampleRate_Hz), cavityAir(cfg.cavity, cfg.batter.radius_m),
       batterHead(cfg.batter, k, cfg.kineticReserve(true)), carryHead(cfg.carry, k, cfg.kineticReserve(false)),
-      contacts(cfg, batterHead, carryHead, k), mallets(contacts.get<MalletsOnBatter>().mallets),
-      malletCoupling(contacts.get<MalletsOnBatter>().coupling), wires(contacts.get<SnaresOnCarry>().wires),
+      contacts(cfg, batterHead, carryHead, k), mallets(contacts.get<MalletsOnBatter>().mallets), wires(contacts.get<SnaresOnCarry>().wires),
       snareCoupling(contacts.get<SnaresOnCarry>().coupling), engaged(contacts.get<SnaresOnCarry>().engaged),
       cavityCoupling(batterHead, carryHead, cavityAir), attachedAir(cfg, batterHead, carryHead, k),
       pressureMics(cfg.mics, cfg.cavity, cfg.sampleRate_Hz, batterHead, carryHead), toHost(cfg.outputFactor())

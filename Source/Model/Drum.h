@@ -188,7 +188,6 @@ private:
     // built, stepped and listed in the ledger in this order.
     Attachments<MalletsOnBatter, SnaresOnCarry> contacts;
     std::vector<Mallet>& mallets;  // the contacts' own: never resized after construction
-    MalletContact& malletCoupling; // coupling: mallets - batter
     SnareWires& wires;             // component
     SnareContact& snareCoupling;   // coupling: wires - carry head
     bool& engaged;                 // the snares on the carry head
