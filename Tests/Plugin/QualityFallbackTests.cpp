@@ -35,32 +35,32 @@ snaresim::KeepUpCheck::Measurement machine(double atChosen)
     };
 }
 
-// Renders silent blocks until the drum playing is built at `bandwidth`, or the time is up.
-bool waitForBandwidth(SnareSimAudioProcessor& proc, double bandwidth, double timeoutSeconds = 60.0)
+// Renders silent blocks until `done()`, or 60 s are up; returns done().
+template <class Done>
+bool renderUntil(SnareSimAudioProcessor& proc, Done&& done)
 {
-    const double coarseness = snaresim::gridCoarsenessFor(bandwidth);
-    const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeoutSeconds);
-    // (the host's float and the rungs' products round: the same grids to a few millionths)
-    while (proc.getDrum() == nullptr || std::abs(proc.getDrum()->config().batter.gridCoarseness - coarseness) > 1.0e-5)
+    const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (! done() && std::chrono::steady_clock::now() < until)
     {
-        if (std::chrono::steady_clock::now() > until)
-            return false;
         render(proc, kBlock, kBlock);
         std::this_thread::sleep_for(std::chrono::milliseconds(2));
     }
-    return true;
+    return done();
 }
 
-// Renders silent blocks while the rung that plays is still being measured (it plays meanwhile),
-// or the time is up.
-void waitWhileMeasured(SnareSimAudioProcessor& proc, double timeoutSeconds = 60.0)
+// Until the drum playing is built at `bandwidth`.
+bool waitForBandwidth(SnareSimAudioProcessor& proc, double bandwidth)
 {
-    const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeoutSeconds);
-    while (proc.qualityNotice().endsWith("while it is measured") && std::chrono::steady_clock::now() < until)
-    {
-        render(proc, kBlock, kBlock);
-        std::this_thread::sleep_for(std::chrono::milliseconds(2));
-    }
+    const double coarseness = snaresim::gridCoarsenessFor(bandwidth);
+    // (the host's float and the rungs' products round: the same grids to a few millionths)
+    return renderUntil(
+        proc, [&] { return proc.getDrum() != nullptr && std::abs(proc.getDrum()->config().batter.gridCoarseness - coarseness) <= 1.0e-5; });
+}
+
+// Until the rung that plays is no longer being measured (it plays meanwhile).
+void waitWhileMeasured(SnareSimAudioProcessor& proc)
+{
+    renderUntil(proc, [&] { return ! proc.qualityNotice().endsWith("while it is measured"); });
 }
 
 // The first rungs below the chosen Quality.
@@ -129,12 +129,7 @@ TEST_CASE("Quality's fallback: a machine that keeps up plays the chosen Quality,
         proc.setQualityMeasurement(machine(0.3));
         set(proc, ParamId::snareCount, 5.0);
         prepare(proc, 48000.0, kBlock);
-        const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-        while (proc.qualityVerdict().state == State::measuring && std::chrono::steady_clock::now() < until)
-        {
-            render(proc, kBlock, kBlock);
-            std::this_thread::sleep_for(std::chrono::milliseconds(2));
-        }
+        renderUntil(proc, [&] { return proc.qualityVerdict().state != State::measuring; });
         CHECK(proc.qualityVerdict().state == State::keepsUp);
         CHECK(proc.currentParameters().get(ParamId::bandwidth) == Approx(kChosen).epsilon(1e-6));
         CHECK(proc.getDrum()->config().batter.gridCoarseness == snaresim::gridCoarsenessFor(kChosen));
