@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <numbers>
 
 namespace snaresim
@@ -66,7 +67,7 @@ PressureMicrophones::PressureMicrophones(const MicSpec& spec, const CavitySpec& 
         h.fine = std::clamp((int) std::lround(spec.fineCellSize_m / g.spacing()), 1, h.side);
         h.vNow.assign((size_t) h.cells, 0.0);
         h.vPrev = h.vNow;
-        h.accel.assign((size_t) h.cells + 1, 0.0);
+        h.rowBegin = hi == 0 ? 0 : heads[0].cells;
     }
     constexpr double deepest = 1.0; // the deepest shell a drum is built with (DrumConfig::validate), for a depth changed later
     const double farthest = spec.reach_m + std::hypot(radius, 0.5 * deepest) + deepest;
@@ -82,21 +83,23 @@ PressureMicrophones::PressureMicrophones(const MicSpec& spec, const CavitySpec& 
         const int span = ((int) (2.0 * nearWidths) + 2) * h.side / h.fine + 1;
         nearMost = std::max(nearMost, (size_t) span * (size_t) span);
     }
+    size_t sources = (size_t) (heads[0].cells + heads[1].cells);
     for (Listener& l : mics)
     {
-        l.sources.assign(most + 1 + nearMost + 1, 0.0f); // the last stays 0: the padding's source
+        l.fineBegin = (int) sources;
+        sources += nearMost;
         l.fine.assign(nearMost, 0.0);
-        const size_t padded = most + nearMost + (size_t) rows * (size_t) (kLanes - 1); // each run padded
-        l.cell.resize(padded);
-        l.now.resize(padded);
-        l.next.resize(padded);
+        l.cell.resize(most + nearMost);
+        l.now.resize(most + nearMost);
+        l.next.resize(most + nearMost);
         l.taps.resize(most + nearMost);
         l.tapCell.resize(most + nearMost);
         l.runEnd.resize((size_t) rows);
         l.count.resize((size_t) rows);
-        l.direct.assign((size_t) rows * kLanes, 0.0f);
+        l.direct.assign((size_t) rows, 0.0f);
         l.around.assign((size_t) rows, 0.0);
     }
+    sourceRows.assign(sources * kLanes, 0.0f);
     setPositions(spec, H);
 }
 
@@ -135,7 +138,7 @@ void PressureMicrophones::place(Listener& l, const AirPoint& p) noexcept
     l.nearRows = by1 >= by0 ? std::min(g.width(), (by1 + 1) * f.side) - l.nearY : 0;
     const int fineColumns = (l.nearColumns + f.fine - 1) / f.fine, fineRows = (l.nearRows + f.fine - 1) / f.fine;
     l.nearCells = fineColumns * fineRows;
-    if ((size_t) (f.cells + 1 + l.nearCells + 1) > l.sources.size()) // cannot happen (the capacity is the largest square)
+    if ((size_t) l.nearCells > l.fine.size()) // cannot happen (the capacity is the largest square)
         l.nearCells = 0, l.nearColumns = l.nearRows = 0, bx1 = bx0 - 1;
     int lo = rows, hi = 0;
     int cellTaps = 0;
@@ -156,7 +159,7 @@ void PressureMicrophones::place(Listener& l, const AirPoint& p) noexcept
                 continue;
             const double r = std::max(1e-3, distance(x, y, f.z, p));
             add(tapAt(r, rho / (2.0 * std::numbers::pi) * meanInverseOver(x, y, f.z, fw, r, p) * obliquityAt(r, far, f.z, p) * f.sign),
-                f.cells + 1 + cy * fineColumns + cx);
+                l.fineBegin + cy * fineColumns + cx);
         }
 
     for (int j = 0; j < f.cells; ++j)
@@ -166,24 +169,19 @@ void PressureMicrophones::place(Listener& l, const AirPoint& p) noexcept
             continue; // heard in fine cells
         const double cx = f.cx[(size_t) j], cy = f.cy[(size_t) j];
         const double r = std::max(1e-3, distance(cx, cy, f.z, p));
-        add(tapAt(r, rho / (2.0 * std::numbers::pi) * meanInverseOver(cx, cy, f.z, w, r, p) * obliquityAt(r, far, f.z, p)), j);
+        add(tapAt(r, rho / (2.0 * std::numbers::pi) * meanInverseOver(cx, cy, f.z, w, r, p) * obliquityAt(r, far, f.z, p)), f.rowBegin + j);
     }
-    // counting sort of the taps by their whole delays, each run padded to whole vectors with
-    // taps of no gain on the zero source
+    // counting sort of the taps by their whole delays
     l.firstDelay = cellTaps > 0 ? lo : 0;
     l.delays = cellTaps > 0 ? hi - lo + 1 : 0;
     std::fill(l.count.begin(), l.count.begin() + l.delays, 0);
     for (int j = 0; j < cellTaps; ++j)
         ++l.count[(size_t) (l.taps[(size_t) j].delay - lo)];
-    const int zero = (int) l.sources.size() - 1;
     int end = 0;
     for (int d = 0; d < l.delays; ++d)
     {
         const int begin = end;
-        end += (l.count[(size_t) d] + kLanes - 1) / kLanes * kLanes;
-        std::fill(l.cell.begin() + begin, l.cell.begin() + end, zero);
-        std::fill(l.now.begin() + begin, l.now.begin() + end, 0.0f);
-        std::fill(l.next.begin() + begin, l.next.begin() + end, 0.0f);
+        end += l.count[(size_t) d];
         l.runEnd[(size_t) d] = end;
         l.count[(size_t) d] = begin; // the run's next free slot
     }
@@ -218,12 +216,46 @@ void PressureMicrophones::place(Listener& l, const AirPoint& p) noexcept
 
 void PressureMicrophones::setPositions(const MicSpec& m, double shellDepth) noexcept
 {
+    sumBlock(); // the steps heard so far with the taps they were heard with
     depth = shellDepth;
     heads[0].z = 0.5 * shellDepth;
     heads[1].z = -0.5 * shellDepth;
     place(mics[top], m.top);
     place(mics[bottom], m.bottom);
     place(mics[room], m.room);
+    beginBlocks();
+}
+
+void PressureMicrophones::setLongestBlock(int steps) noexcept
+{
+    sumBlock();
+    longestBlock = std::clamp(steps, 1, kLanes);
+    beginBlocks();
+}
+
+void PressureMicrophones::beginBlocks() noexcept
+{
+    int shortest = rows;
+    for (const Listener& l : mics)
+        shortest = std::min(shortest, l.firstDelay);
+    span = std::clamp(shortest + 1, 1, longestBlock);
+    std::fill(sourceRows.begin(), sourceRows.end(), 0.0f); // the rows' steps beyond the span stay 0
+    filled = 0;
+}
+
+void PressureMicrophones::sumBlock() noexcept
+{
+    if (filled > 0)
+    {
+        if (filled < span) // a block cut short: the rest of its steps hold the last block's
+            for (size_t j = 0; j < sourceRows.size(); j += kLanes)
+                std::fill_n(sourceRows.begin() + (std::ptrdiff_t) j + filled, span - filled, 0.0f);
+        for (Listener& l : mics)
+            SNARESIM_ON_VECTOR_TARGET(sumTapBlock<kLanes>)
+        (l.delays, l.runEnd.data(), l.cell.data(), l.now.data(), l.next.data(), sourceRows.data(), l.direct.data(),
+         (size_t) blockSlot + (size_t) l.firstDelay, (size_t) rows - 1);
+    }
+    filled = 0;
 }
 
 void PressureMicrophones::push(std::vector<double>& ring, const Tap& t, double value) const noexcept
@@ -235,6 +267,11 @@ void PressureMicrophones::push(std::vector<double>& ring, const Tap& t, double v
 
 void PressureMicrophones::listen(const Membrane& batter, const Membrane& carry, std::array<const double*, 2> sums) noexcept
 {
+    // this step's column of the sources' rows: the heads' cells, then the fine cells near the
+    // microphones
+    if (filled == 0)
+        blockSlot = pos;
+    float* column = sourceRows.data() + filled;
     const Membrane* membranes[2] = { &batter, &carry };
     const double inverseKk = 1.0 / (k * k);
     for (int hi = 0; hi < 2; ++hi)
@@ -246,37 +283,31 @@ void PressureMicrophones::listen(const Membrane& batter, const Membrane& carry, 
             membranes[hi]->blockSumsNext(h.side, h.blockSum.data()); // volumes / h^2
             blockSum = h.blockSum.data();
         }
-        h.accel[(size_t) h.cells] = SNARESIM_ON_VECTOR_TARGET(cellAccelerations)(h.cells, h.block.data(), blockSum, h.sign * h.nodeArea,
-                                                                                 inverseKk, h.vNow.data(), h.vPrev.data(), h.accel.data());
+        h.whole =
+            SNARESIM_ON_VECTOR_TARGET(cellAccelerations<kLanes>)(h.cells, h.block.data(), blockSum, h.sign * h.nodeArea, inverseKk,
+                                                                 h.vNow.data(), h.vPrev.data(), column + (size_t) h.rowBegin * kLanes);
     }
+    for (Listener& l : mics)
+        if (l.nearCells > 0)
+        {
+            const Head& f = heads[(size_t) l.facing];
+            double* fine = l.fine.data();
+            membranes[l.facing]->blockAccelerationsIn(f.fine, l.nearX, l.nearY, l.nearColumns, l.nearRows, fine);
+            float* A = column + (size_t) l.fineBegin * kLanes;
+            for (int i = 0; i < l.nearCells; ++i)
+                A[(size_t) i * kLanes] = (float) (fine[i] * inverseKk);
+        }
+    if (++filled == span)
+        sumBlock();
     const size_t mask = (size_t) rows - 1;
     for (int m = 0; m < numMics; ++m)
     {
         Listener& l = mics[(size_t) m];
-        const Head& f = heads[(size_t) l.facing];
-        // the sources: the facing head's cells and whole, then the fine cells near the microphone
-        float* A = l.sources.data();
-        for (int j = 0; j <= f.cells; ++j)
-            A[j] = (float) f.accel[(size_t) j];
-        if (l.nearCells > 0)
-        {
-            double* fine = l.fine.data();
-            membranes[l.facing]->blockAccelerationsIn(f.fine, l.nearX, l.nearY, l.nearColumns, l.nearRows, fine);
-            for (int i = 0; i < l.nearCells; ++i)
-                A[f.cells + 1 + i] = (float) (fine[i] * inverseKk);
-        }
-        SNARESIM_ON_VECTOR_TARGET(sumTapRuns<kLanes>)
-        (l.delays, l.runEnd.data(), l.cell.data(), l.now.data(), l.next.data(), A, l.direct.data(), (size_t) pos + (size_t) l.firstDelay,
-         mask);
-        push(l.around, l.facingWhole, f.accel[(size_t) f.cells]);
-        const Head& o = heads[(size_t) (1 - l.facing)];
-        push(l.around, l.otherWhole, o.accel[(size_t) o.cells]);
+        push(l.around, l.facingWhole, heads[(size_t) l.facing].whole);
+        push(l.around, l.otherWhole, heads[(size_t) (1 - l.facing)].whole);
         const size_t here = (size_t) pos & mask;
-        float* lanes = l.direct.data() + here * kLanes;
-        double p = 0.0;
-        for (int j = 0; j < kLanes; ++j)
-            p += (double) lanes[j];
-        std::fill(lanes, lanes + kLanes, 0.0f);
+        const double p = (double) l.direct[here];
+        l.direct[here] = 0.0f;
         const double x = l.around[here];
         l.around[here] = 0.0;
         l.lowPass += alpha * (x - l.lowPass);
@@ -291,7 +322,7 @@ void PressureMicrophones::clear() noexcept
     {
         std::fill(h.vNow.begin(), h.vNow.end(), 0.0);
         std::fill(h.vPrev.begin(), h.vPrev.end(), 0.0);
-        std::fill(h.accel.begin(), h.accel.end(), 0.0);
+        h.whole = 0.0;
     }
     for (Listener& l : mics)
     {
@@ -299,6 +330,8 @@ void PressureMicrophones::clear() noexcept
         std::fill(l.around.begin(), l.around.end(), 0.0);
         l.lowPass = 0.0;
     }
+    std::fill(sourceRows.begin(), sourceRows.end(), 0.0f);
+    filled = 0;
     out.fill(0.0);
 }
 

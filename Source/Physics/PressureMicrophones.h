@@ -21,8 +21,8 @@
 // <.> the mean over the facing rim's points, d from a rim point to the microphone, H the shell's
 // depth, A_f, A_o the heads' whole outward volume accelerations (the batter's outward normal up,
 // the carry head's down). The air box checks it (Tests/Engine/PressureMicrophoneTests.cpp).
-// Cost per step: a pass over each head (Membrane::blockSumsNext), two multiply-adds per cell
-// per microphone. Real-time safe after construction: setPositions and listen allocate nothing.
+// Cost per step: a pass over each head (Membrane::blockSumsNext), a store per cell per
+// microphone, and two multiply-adds per cell per microphone, made a block of steps at a time. Real-time safe after construction: setPositions and listen allocate nothing.
 
 #include "CavitySpec.h"
 #include "CircularGrid.h"
@@ -66,6 +66,10 @@ public:
 
     void clear() noexcept;
 
+    // At most this many steps a block (1 .. kLanes; kLanes unless a test sets it): the sound
+    // is the same to the taps' rounding.
+    void setLongestBlock(int steps) noexcept;
+
 private:
     struct Head
     {
@@ -82,7 +86,8 @@ private:
         int fine = 1;                    // side of the cells near a microphone, in grid nodes
         std::vector<double> blockSum;    // the blocks' sums of w^{n+1} (Membrane::blockSumsNext)
         std::vector<double> vNow, vPrev; // cell volumes at n, n-1 (m^3)
-        std::vector<double> accel;       // the cells' A^n, the whole head's last
+        int rowBegin = 0;                // its first cell's row of A (sourceRows)
+        double whole = 0.0;              // the whole head's A^n
     };
     // One source's share of a microphone: gain at a delay of whole samples plus a fraction.
     struct Tap
@@ -92,16 +97,19 @@ private:
         double gain = 0.0;
     };
     // A microphone's taps on its facing head's cells, sorted by their whole delays: a run per
-    // delay, summed at once into the future of the direct sound (A ring of `rows` samples).
-    // Each run is padded to whole vectors of kLanes taps with taps of no gain on the zero
-    // source (the last of `sources`), and its sum kept lane by lane in a ring of kLanes floats
-    // per sample, added across the lanes once, when its sample is heard. In single precision:
-    // the taps' rounding is about 1e-7 of the sound, far below anything heard or measured.
+    // delay. The taps are summed a block of steps at a time: each source (a head's cell, a
+    // microphone's fine cell) keeps a row of kLanes floats, its A at the block's steps, and a
+    // run's rows go at once into the ring of the direct sound ahead (A ring of `rows` samples),
+    // whole rows, no gathers. A block holds at most one step more than the microphones'
+    // shortest whole delay (`span`), so every sample is complete when it is heard: the samples
+    // it reaches lie at least that far ahead of its first step.
+    // In single precision: the taps' rounding is about 1e-7 of the sound, far below anything
+    // heard or measured.
     static constexpr int kLanes = 8;
     struct Listener
     {
         int facing = 0;
-        std::vector<int> cell;        // taps: their sources, by delay
+        std::vector<int> cell;        // taps: their sources' rows, by delay
         std::vector<float> now, next; // gain (1 - frac), gain frac: to the delay and the one after
         std::vector<int> runEnd;      // per delay from firstDelay: end of its run of taps
         int firstDelay = 0, delays = 0;
@@ -109,10 +117,10 @@ private:
         // the head's short waves into ones that radiate): a rectangle of the grid from node
         // (nearX, nearY), nearColumns x nearRows nodes, in fine cells.
         int nearX = 0, nearY = 0, nearColumns = 0, nearRows = 0, nearCells = 0;
-        std::vector<float> sources;        // the facing head's cells' and whole's A, then the fine cells', then 0
+        int fineBegin = 0;                 // the first fine cell's row of A (sourceRows)
         std::vector<double> fine;          // the fine cells' A, as the head gives them
         Tap facingWhole {}, otherWhole {}; // the low-passed whole-head terms
-        std::vector<float> direct;         // ring: the direct sound ahead, kLanes partial sums a sample
+        std::vector<float> direct;         // ring: the direct sound ahead
         std::vector<double> around;        // ring: the low-pass's input, ahead
         double lowPass = 0.0;
         // scratch of place() (no allocation there)
@@ -121,6 +129,9 @@ private:
     };
 
     void place(Listener& l, const AirPoint& p) noexcept;
+    // the taps of the block's steps so far into the rings, a new block begun at the next step
+    void sumBlock() noexcept;
+    void beginBlocks() noexcept; // the span from the microphones' delays, the rows zeroed
     Tap tapAt(double distance_m, double gain) const noexcept;
     void push(std::vector<double>& ring, const Tap& t, double value) const noexcept;
 
@@ -129,6 +140,11 @@ private:
     double rho, c, alpha;    // air density, sound speed, low-pass coefficient
     int rows = 0;            // the rings' length (a power of two), longer than every delay
     int pos = 0;             // ring slot of step n
+    int longestBlock = kLanes;
+    int span = 1;                  // steps a block holds (1 .. longestBlock): the shortest whole delay plus one
+    int filled = 0;                // steps of the block so far
+    int blockSlot = 0;             // ring slot of the block's first step
+    std::vector<float> sourceRows; // kLanes floats a source: the heads' cells, then each microphone's fine cells
     std::array<Head, 2> heads;
     std::array<Listener, numMics> mics;
     std::array<double, numMics> out {};

@@ -1,9 +1,17 @@
 // The pressure microphones (PressureMicrophones.h) against the air box's pressure at the same
-// points: octave-band levels of the first 300 ms after a strike.
+// points: octave-band levels of the first 300 ms after a strike; their taps summed a block of
+// steps at a time against step by step.
+#include "Membrane.h"
 #include "MicBands.h"
+#include "PressureMicrophones.h"
 #include "Report.h"
+#include "TestDrums.h"
 
 #include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
 
 using namespace snaresim;
 using namespace snaresim::test;
@@ -48,4 +56,62 @@ TEST_CASE("pressure microphones: octave bands 125 Hz - 4 kHz within 3 dB of the 
         worstDifference("the real-time drum without the near field, the box on its grids", rtChannels.drum, boxOnGrids.drum, fs,
                         kOctaves.back(), reportFile());
     }
+}
+
+TEST_CASE("pressure microphones: the taps summed a block of steps at a time give the sound summed step by step, the microphones near, far "
+          "and moved",
+          "[mics]")
+{
+    // Two listeners on the same heads' motion: one sums its taps every step, one a block of
+    // steps at a time (PressureMicrophones.h), moved mid-block close to the heads and back. A block that held a step more than its shortest
+    // delay allows, or a block cut short by a move that kept older steps, would put sound into
+    // samples already heard or add it twice: differences of the order of the sound itself.
+    const DrumConfig cfg = test::wholeDrum();
+    const double k = 1.0 / cfg.sampleRate_Hz;
+    Membrane batter(cfg.batter, k), carry(cfg.carry, k);
+    const double top = 0.5 * cfg.cavity.shellDepth_m, bottom = -top;
+    MicSpec far = cfg.mics; // 4 cm from each head: five whole steps, blocks of six
+    far.top = { -0.02, 0.05, top + 0.04 };
+    far.room = { 0.4, 0.2, 0.9 };
+    MicSpec near = far;
+    near.top = { 0.03, -0.02, top + 0.002 };       // 2 mm over the batter: no whole step, a step a block
+    near.bottom = { -0.05, 0.01, bottom - 0.015 }; // 1.5 cm under the carry head
+    PressureMicrophones blocks(far, cfg.cavity, cfg.sampleRate_Hz, batter, carry), steps = blocks;
+    steps.setLongestBlock(1);
+
+    GridDistribution stick, below;
+    stick.reserve(batter.grid().distributionCapacity(0.01));
+    below.reserve(carry.grid().distributionCapacity(0.01));
+    REQUIRE(batter.grid().makeDistribution(0.04, 0.03, 0.01, stick));
+    REQUIRE(carry.grid().makeDistribution(-0.06, 0.02, 0.01, below));
+    double worst = 0.0, loudest = 0.0;
+    const int samples = (int) std::lround(0.05 * cfg.sampleRate_Hz);
+    for (int n = 0; n < samples; ++n)
+    {
+        batter.computeFree();
+        carry.computeFree();
+        if (n < 40) // a short push on each head, each its own shape
+        {
+            batter.applyForce(stick, 20.0 * std::sin(std::numbers::pi * n / 40.0));
+            carry.applyForce(below, -8.0 * std::sin(std::numbers::pi * n / 40.0));
+        }
+        if (n == 6 * 100 + 3 || n == 1400) // in, three steps into a block of six, and out again
+        {
+            const MicSpec& to = n < 1000 ? near : far;
+            blocks.setPositions(to, cfg.cavity.shellDepth_m);
+            steps.setPositions(to, cfg.cavity.shellDepth_m);
+        }
+        blocks.listen(batter, carry);
+        steps.listen(batter, carry);
+        for (int m = 0; m < PressureMicrophones::numMics; ++m)
+        {
+            const auto p = (PressureMicrophones::Position) m;
+            worst = std::max(worst, std::abs(blocks.pressure(p) - steps.pressure(p)));
+            loudest = std::max(loudest, std::abs(steps.pressure(p)));
+        }
+        batter.advance();
+        carry.advance();
+    }
+    REQUIRE(loudest > 1.0); // Pa: the heads sound
+    CHECK(worst < 1e-5 * loudest);
 }
