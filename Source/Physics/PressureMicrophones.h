@@ -65,6 +65,10 @@ public:
     double pressure(Position p) const { return out[(size_t) p]; }
 
     void clear() noexcept;
+    // The steps so far summed and the next block begun at the next step: at each strike, so
+    // that a strike's sound, to the last bit, does not depend on how long the drum stood still
+    // before it (the blocks' phase sets the taps' rounding).
+    void beginBlockAtNextStep() noexcept { sumBlock(); }
 
     // At most this many steps a block (1 .. kLanes; kLanes unless a test sets it): the sound
     // is the same to the taps' rounding.
