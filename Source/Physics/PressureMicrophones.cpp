@@ -251,9 +251,11 @@ void PressureMicrophones::sumBlock() noexcept
             for (size_t j = 0; j < sourceRows.size(); j += kLanes)
                 std::fill_n(sourceRows.begin() + (std::ptrdiff_t) j + filled, span - filled, 0.0f);
         for (Listener& l : mics)
+        {
             SNARESIM_ON_VECTOR_TARGET(sumTapBlock<kLanes>)
-        (l.delays, l.runEnd.data(), l.cell.data(), l.now.data(), l.next.data(), sourceRows.data(), l.direct.data(),
-         (size_t) blockSlot + (size_t) l.firstDelay, (size_t) rows - 1);
+            (l.delays, l.runEnd.data(), l.cell.data(), l.now.data(), l.next.data(), sourceRows.data(), l.direct.data(),
+             (size_t) blockSlot + (size_t) l.firstDelay, (size_t) rows - 1);
+        }
     }
     filled = 0;
 }

@@ -21,8 +21,9 @@
 // <.> the mean over the facing rim's points, d from a rim point to the microphone, H the shell's
 // depth, A_f, A_o the heads' whole outward volume accelerations (the batter's outward normal up,
 // the carry head's down). The air box checks it (Tests/Engine/PressureMicrophoneTests.cpp).
-// Cost per step: a pass over each head (Membrane::blockSumsNext), a store per cell per
-// microphone, and two multiply-adds per cell per microphone, made a block of steps at a time. Real-time safe after construction: setPositions and listen allocate nothing.
+// Cost per step: a pass over each head (Membrane::blockSumsNext), a store per cell, and two
+// multiply-adds per cell per microphone, summed a block of steps at a time. Real-time safe
+// after construction: setPositions, listen and beginBlockAtNextStep allocate nothing.
 
 #include "CavitySpec.h"
 #include "CircularGrid.h"
