@@ -95,7 +95,6 @@ void Drum::strike(double speed, double xFrac, double yFrac)
     if (! std::isfinite(speed) || ! std::isfinite(xFrac) || ! std::isfinite(yFrac) || speed <= 0.0)
         return;
     speed = std::min(speed, 50.0);
-    pressureMics.beginBlockAtNextStep();
     const double r = std::hypot(xFrac, yFrac);
     if (r > 0.95) // keep the patch on the head
     {

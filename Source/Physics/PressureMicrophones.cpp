@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstddef>
 #include <numbers>
 
 namespace snaresim
@@ -96,10 +95,12 @@ PressureMicrophones::PressureMicrophones(const MicSpec& spec, const CavitySpec& 
         l.tapCell.resize(most + nearMost);
         l.runEnd.resize((size_t) rows);
         l.count.resize((size_t) rows);
-        l.direct.assign((size_t) rows, 0.0f);
+        l.direct.assign((size_t) rows * kLanes, 0.0f);
         l.around.assign((size_t) rows, 0.0);
     }
     sourceRows.assign(sources * kLanes, 0.0f);
+    tileNow.assign((size_t) rows * kLanes * kLanes, 0.0f); // a microphone's delays lie within the rings
+    tileNext = tileNow;
     setPositions(spec, H);
 }
 
@@ -239,7 +240,6 @@ void PressureMicrophones::beginBlocks() noexcept
     for (const Listener& l : mics)
         shortest = std::min(shortest, l.firstDelay);
     span = std::clamp(shortest + 1, 1, longestBlock);
-    std::fill(sourceRows.begin(), sourceRows.end(), 0.0f); // the rows' steps beyond the span stay 0
     filled = 0;
 }
 
@@ -247,14 +247,13 @@ void PressureMicrophones::sumBlock() noexcept
 {
     if (filled > 0)
     {
-        if (filled < span) // a block cut short: the rest of its steps hold the last block's
-            for (size_t j = 0; j < sourceRows.size(); j += kLanes)
-                std::fill_n(sourceRows.begin() + (std::ptrdiff_t) j + filled, span - filled, 0.0f);
-        for (Listener& l : mics)
+        for (Listener& l : mics) // the rows' steps from `filled` on are not added
         {
             SNARESIM_ON_VECTOR_TARGET(sumTapBlock<kLanes>)
-            (l.delays, l.runEnd.data(), l.cell.data(), l.now.data(), l.next.data(), sourceRows.data(), l.direct.data(),
-             (size_t) blockSlot + (size_t) l.firstDelay, (size_t) rows - 1);
+            (l.delays, l.runEnd.data(), l.cell.data(), l.now.data(), l.next.data(), sourceRows.data(), tileNow.data(), tileNext.data());
+            SNARESIM_ON_VECTOR_TARGET(addTapTiles<kLanes>)
+            (l.delays, filled, tileNow.data(), tileNext.data(), l.direct.data(), (size_t) blockSlot + (size_t) l.firstDelay,
+             (size_t) rows - 1);
         }
     }
     filled = 0;
@@ -308,8 +307,11 @@ void PressureMicrophones::listen(const Membrane& batter, const Membrane& carry, 
         push(l.around, l.facingWhole, heads[(size_t) l.facing].whole);
         push(l.around, l.otherWhole, heads[(size_t) (1 - l.facing)].whole);
         const size_t here = (size_t) pos & mask;
-        const double p = (double) l.direct[here];
-        l.direct[here] = 0.0f;
+        float* lanes = l.direct.data() + here * kLanes;
+        double p = 0.0;
+        for (int j = 0; j < kLanes; ++j)
+            p += (double) lanes[j];
+        std::fill(lanes, lanes + kLanes, 0.0f);
         const double x = l.around[here];
         l.around[here] = 0.0;
         l.lowPass += alpha * (x - l.lowPass);
@@ -332,7 +334,6 @@ void PressureMicrophones::clear() noexcept
         std::fill(l.around.begin(), l.around.end(), 0.0);
         l.lowPass = 0.0;
     }
-    std::fill(sourceRows.begin(), sourceRows.end(), 0.0f);
     filled = 0;
     out.fill(0.0);
 }

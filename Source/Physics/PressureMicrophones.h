@@ -23,7 +23,7 @@
 // the carry head's down). The air box checks it (Tests/Engine/PressureMicrophoneTests.cpp).
 // Cost per step: a pass over each head (Membrane::blockSumsNext), a store per cell, and two
 // multiply-adds per cell per microphone, summed a block of steps at a time. Real-time safe
-// after construction: setPositions, listen and beginBlockAtNextStep allocate nothing.
+// after construction: setPositions and listen allocate nothing.
 
 #include "CavitySpec.h"
 #include "CircularGrid.h"
@@ -66,11 +66,6 @@ public:
     double pressure(Position p) const { return out[(size_t) p]; }
 
     void clear() noexcept;
-    // The steps so far summed and the next block begun at the next step: at each strike, so
-    // that a strike's sound, to the last bit, does not depend on how long the drum stood still
-    // before it (the blocks' phase sets the taps' rounding).
-    void beginBlockAtNextStep() noexcept { sumBlock(); }
-
     // At most this many steps a block (1 .. kLanes; kLanes unless a test sets it): the sound
     // is the same to the taps' rounding.
     void setLongestBlock(int steps) noexcept;
@@ -104,12 +99,14 @@ private:
     // A microphone's taps on its facing head's cells, sorted by their whole delays: a run per
     // delay. The taps are summed a block of steps at a time: each source (a head's cell, a
     // microphone's fine cell) keeps a row of kLanes floats, its A at the block's steps, and a
-    // run's rows go at once into the ring of the direct sound ahead (A ring of `rows` samples),
-    // whole rows, no gathers. A block holds at most one step more than the microphones'
+    // run's rows are summed at once, whole rows, no gathers, kept lane by lane (a tap's place
+    // in its run modulo kLanes) and added to the ring of the direct sound ahead (A ring of
+    // `rows` samples, kLanes floats a sample, added across the lanes when the sample is heard)
+    // in the order summing step by step would add them: the sound is the same to the last bit
+    // wherever the blocks fall. A block holds at most one step more than the microphones'
     // shortest whole delay (`span`), so every sample is complete when it is heard: the samples
-    // it reaches lie at least that far ahead of its first step.
-    // In single precision: the taps' rounding is about 1e-7 of the sound, far below anything
-    // heard or measured.
+    // it reaches lie at least that far ahead of its first step. In single precision: the taps'
+    // rounding is about 1e-7 of the sound, far below anything heard or measured.
     static constexpr int kLanes = 8;
     struct Listener
     {
@@ -125,7 +122,7 @@ private:
         int fineBegin = 0;                 // the first fine cell's row of A (sourceRows)
         std::vector<double> fine;          // the fine cells' A, as the head gives them
         Tap facingWhole {}, otherWhole {}; // the low-passed whole-head terms
-        std::vector<float> direct;         // ring: the direct sound ahead
+        std::vector<float> direct;         // ring: the direct sound ahead, kLanes partial sums a sample
         std::vector<double> around;        // ring: the low-pass's input, ahead
         double lowPass = 0.0;
         // scratch of place() (no allocation there)
@@ -146,10 +143,11 @@ private:
     int rows = 0;            // the rings' length (a power of two), longer than every delay
     int pos = 0;             // ring slot of step n
     int longestBlock = kLanes;
-    int span = 1;                  // steps a block holds (1 .. longestBlock): the shortest whole delay plus one
-    int filled = 0;                // steps of the block so far
-    int blockSlot = 0;             // ring slot of the block's first step
-    std::vector<float> sourceRows; // kLanes floats a source: the heads' cells, then each microphone's fine cells
+    int span = 1;                         // steps a block holds (1 .. longestBlock): the shortest whole delay plus one
+    int filled = 0;                       // steps of the block so far
+    int blockSlot = 0;                    // ring slot of the block's first step
+    std::vector<float> sourceRows;        // kLanes floats a source: the heads' cells, then each microphone's fine cells
+    std::vector<float> tileNow, tileNext; // a microphone's runs' sums in a block, per delay, step and lane
     std::array<Head, 2> heads;
     std::array<Listener, numMics> mics;
     std::array<double, numMics> out {};

@@ -2,50 +2,66 @@
 // compiled once per vector target by PerVectorTarget.inl: no include guard, no includes.
 
 // A microphone's taps over a block of up to Lanes steps, a run per whole delay d: each tap's
-// source row holds its A at the block's steps (b = 0 .. Lanes - 1, zero beyond the block), so
-// now * A[b] goes to ring sample slot + d + b and next * A[b] to the one after: whole rows, no
-// gathers; the run's rows summed in registers and added to the ring once.
+// source row holds its A at the block's steps (b = 0 .. Lanes - 1, zero beyond the block), so a
+// tap adds now * A[b] and next * A[b] to its run's sums at step b, whole rows, no gathers. Each
+// run's sums are kept by lane (the tap's place in the run modulo Lanes) and step, into the
+// tiles tile[(d Lanes + b) Lanes + lane], for addTapTiles.
 template <int Lanes>
 void sumTapBlock(int delays, const int* __restrict runEnd, const int* __restrict cell, const float* __restrict now,
-                 const float* __restrict next, const float* __restrict rows, float* __restrict ring, size_t slot, size_t mask)
+                 const float* __restrict next, const float* __restrict rows, float* __restrict tileNow, float* __restrict tileNext)
 {
     int t = 0;
-    for (int d = 0; d < delays; ++d, ++slot)
+    for (int d = 0; d < delays; ++d)
     {
-        float s0[Lanes] = {}, s1[Lanes] = {}, u0[Lanes] = {}, u1[Lanes] = {};
+        float sn[Lanes][Lanes] = {}, sx[Lanes][Lanes] = {}; // [lane][step]
         const int end = runEnd[d];
-        for (; t + 1 < end; t += 2) // two taps at a time: two chains of sums
-        {
-            const float* a = rows + (size_t) cell[t] * Lanes;
-            const float* b = rows + (size_t) cell[t + 1] * Lanes;
-            const float n0 = now[t], x0 = next[t], n1 = now[t + 1], x1 = next[t + 1];
-#pragma omp simd
-            for (int j = 0; j < Lanes; ++j)
+        for (int c = t; c < end; c += Lanes)
+            for (int lane = 0; lane < Lanes && c + lane < end; ++lane)
             {
-                s0[j] += n0 * a[j];
-                s1[j] += x0 * a[j];
-                u0[j] += n1 * b[j];
-                u1[j] += x1 * b[j];
-            }
-        }
-        if (t < end)
-        {
-            const float* a = rows + (size_t) cell[t] * Lanes;
-            const float n0 = now[t], x0 = next[t];
+                const float* a = rows + (size_t) cell[c + lane] * Lanes;
+                const float n = now[c + lane], x = next[c + lane];
 #pragma omp simd
-            for (int j = 0; j < Lanes; ++j)
-            {
-                s0[j] += n0 * a[j];
-                s1[j] += x0 * a[j];
+                for (int b = 0; b < Lanes; ++b)
+                {
+                    sn[lane][b] += n * a[b];
+                    sx[lane][b] += x * a[b];
+                }
             }
-            ++t;
-        }
-        for (int j = 0; j < Lanes; ++j)
-        {
-            ring[(slot + (size_t) j) & mask] += s0[j] + u0[j];
-            ring[(slot + (size_t) j + 1) & mask] += s1[j] + u1[j];
-        }
+        t = end;
+        float* tn = tileNow + (size_t) d * Lanes * Lanes;
+        float* tx = tileNext + (size_t) d * Lanes * Lanes;
+        for (int b = 0; b < Lanes; ++b)
+            for (int lane = 0; lane < Lanes; ++lane)
+            {
+                tn[b * Lanes + lane] = sn[lane][b];
+                tx[b * Lanes + lane] = sx[lane][b];
+            }
     }
+}
+
+// The tiles of the block's `steps` steps into the ring (Lanes floats a sample): step by step,
+// and in each step run by run, the run's sums at its delay and the ones of `next` at the sample
+// after, lane by lane: the order the samples would get them step by step, so the sound does not
+// depend on where the blocks fall.
+template <int Lanes>
+void addTapTiles(int delays, int steps, const float* __restrict tileNow, const float* __restrict tileNext, float* __restrict ring,
+                 size_t slot, size_t mask)
+{
+    for (int b = 0; b < steps; ++b)
+        for (int d = 0; d < delays; ++d)
+        {
+            const size_t at = slot + (size_t) b + (size_t) d;
+            float* r0 = ring + (at & mask) * Lanes;
+            float* r1 = ring + ((at + 1) & mask) * Lanes;
+            const float* n = tileNow + ((size_t) d * Lanes + (size_t) b) * Lanes;
+            const float* x = tileNext + ((size_t) d * Lanes + (size_t) b) * Lanes;
+#pragma omp simd
+            for (int lane = 0; lane < Lanes; ++lane)
+                r0[lane] += n[lane];
+#pragma omp simd
+            for (int lane = 0; lane < Lanes; ++lane)
+                r1[lane] += x[lane];
+        }
 }
 
 // The cells' A^n = (V^{n+1} - 2 V^n + V^{n-1}) / k^2 from their blocks' sums at n+1 (V = scale
