@@ -99,7 +99,10 @@ PressureMicrophones::PressureMicrophones(const MicSpec& spec, const CavitySpec& 
         l.around.assign((size_t) rows, 0.0);
     }
     sourceRows.assign(sources * kLanes, 0.0f);
-    tileNow.assign((size_t) rows * kLanes * kLanes, 0.0f); // a microphone's delays lie within the rings
+    // A microphone's whole delays to its facing head's cells span at most the head's diameter
+    // (two cells' distances to it differ by no more than the cells' distance) and two more.
+    const int widest = std::min(rows, (int) std::ceil(2.0 * radius / (c * k)) + 2);
+    tileNow.assign((size_t) widest * kLanes * kLanes, 0.0f);
     tileNext = tileNow;
     setPositions(spec, H);
 }
@@ -186,6 +189,7 @@ void PressureMicrophones::place(Listener& l, const AirPoint& p) noexcept
         l.runEnd[(size_t) d] = end;
         l.count[(size_t) d] = begin; // the run's next free slot
     }
+    l.delays = std::min(l.delays, (int) (tileNow.size() / (kLanes * kLanes))); // cannot bind (the tiles' length, above)
     for (int j = 0; j < cellTaps; ++j)
     {
         const Tap& t = l.taps[(size_t) j];

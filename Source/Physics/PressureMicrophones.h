@@ -67,7 +67,7 @@ public:
 
     void clear() noexcept;
     // At most this many steps a block (1 .. kLanes; kLanes unless a test sets it): the sound
-    // is the same to the taps' rounding.
+    // is the same to the last bit.
     void setLongestBlock(int steps) noexcept;
 
 private:
@@ -133,7 +133,7 @@ private:
     void place(Listener& l, const AirPoint& p) noexcept;
     // the taps of the block's steps so far into the rings, a new block begun at the next step
     void sumBlock() noexcept;
-    void beginBlocks() noexcept; // the span from the microphones' delays, the rows zeroed
+    void beginBlocks() noexcept; // the span from the microphones' delays, a new block
     Tap tapAt(double distance_m, double gain) const noexcept;
     void push(std::vector<double>& ring, const Tap& t, double value) const noexcept;
 
@@ -147,7 +147,7 @@ private:
     int filled = 0;                       // steps of the block so far
     int blockSlot = 0;                    // ring slot of the block's first step
     std::vector<float> sourceRows;        // kLanes floats a source: the heads' cells, then each microphone's fine cells
-    std::vector<float> tileNow, tileNext; // a microphone's runs' sums in a block, per delay, step and lane
+    std::vector<float> tileNow, tileNext; // a microphone's runs' sums in a block, per delay, step and lane (sumTapBlock)
     std::array<Head, 2> heads;
     std::array<Listener, numMics> mics;
     std::array<double, numMics> out {};

@@ -2,8 +2,9 @@
 // compiled once per vector target by PerVectorTarget.inl: no include guard, no includes.
 
 // A microphone's taps over a block of up to Lanes steps, a run per whole delay d: each tap's
-// source row holds its A at the block's steps (b = 0 .. Lanes - 1, zero beyond the block), so a
-// tap adds now * A[b] and next * A[b] to its run's sums at step b, whole rows, no gathers. Each
+// source row holds its A at the block's steps (b = 0 .. Lanes - 1; the steps beyond the block
+// are summed too, and not added: addTapTiles), so a tap adds now * A[b] and next * A[b] to its
+// run's sums at step b, whole rows, no gathers. Each
 // run's sums are kept by lane (the tap's place in the run modulo Lanes) and step, into the
 // tiles tile[(d Lanes + b) Lanes + lane], for addTapTiles.
 template <int Lanes>

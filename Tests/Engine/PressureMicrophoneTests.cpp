@@ -65,9 +65,10 @@ TEST_CASE("pressure microphones: the taps summed a block of steps at a time give
 {
     // Two listeners on the same heads' motion: one sums its taps every step, one a block of
     // steps at a time (PressureMicrophones.h), moved mid-block close to the heads and back: the
-    // same samples, bit for bit. A block that held a step more than its shortest
-    // delay allows, or a block cut short by a move that kept older steps, would put sound into
-    // samples already heard or add it twice: differences of the order of the sound itself.
+    // same samples, bit for bit. A block that held a step more than its shortest delay
+    // allows, or a block cut short by a move that added the steps it had not reached, would
+    // put sound into samples already heard or add older steps again: differences of the order
+    // of the sound itself.
     const DrumConfig cfg = test::wholeDrum();
     const double k = 1.0 / cfg.sampleRate_Hz;
     Membrane batter(cfg.batter, k), carry(cfg.carry, k);
