@@ -183,7 +183,9 @@ TEST_CASE("match: the membrane and snare tensions of a SnareSim strike recovered
 {
     // Two strikes of the default drum but for the two tensions; each matched from the other end
     // of both ranges. The snares are chaotic: no candidate but the very drum gives a distance of
-    // 0, and the tensions come back only as far as the features tell them apart.
+    // 0, and the tensions come back only as far as the features tell them apart. 150 renders:
+    // with 100 the second case ends on the snares' plateau below 30 N (19.7 N, on the avx2 and
+    // the baseline paths alike); with 150, 200 and 300 both cases come within 3 % on both paths.
     struct Case
     {
         double batter, snare;
@@ -203,7 +205,7 @@ TEST_CASE("match: the membrane and snare tensions of a SnareSim strike recovered
         const auto preset = dir.out() / "match.snarepreset";
         const auto start = std::chrono::steady_clock::now();
         const auto run = runRenderer({ "--match", recording, "-o", preset.string(), "--match-params", "batter_tension,snare_tension",
-                                       "--match-budget", "100", "--set", std::string("batter_tension=") + truth.startBatter, "--set",
+                                       "--match-budget", "150", "--set", std::string("batter_tension=") + truth.startBatter, "--set",
                                        std::string("snare_tension=") + truth.startSnare, "--json" },
                                      dir.root() / "capture");
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -215,7 +217,7 @@ TEST_CASE("match: the membrane and snare tensions of a SnareSim strike recovered
                       << (double) json["distance"] << " in " << (int) json["renders"] << " renders, " << seconds << " s");
         CHECK(std::abs(batter / truth.batter - 1.0) < 0.05);
         CHECK(std::abs(snare / truth.snare - 1.0) < 0.15);
-        CHECK((int) json["renders"] <= 100);
+        CHECK((int) json["renders"] <= 150);
         CHECK((double) json["distance"] >= 0.0);
 
         // The other parameters kept their start values; every ID is reported.
@@ -360,7 +362,8 @@ TEST_CASE("match: a SnareSim strike matched within 2 dB whole-strike distance, t
           "[renderer][match][slow]")
 {
     // A strike of the default drum with four parameters and the velocity changed, matched over
-    // them from the defaults with a modest budget.
+    // them from the defaults with a modest budget: 160 renders come within 1.4 dB on the avx2 and
+    // the baseline paths (120 end at 2.05 and 1.85 dB, 200 at 0.94 and 1.58 dB).
     TempDir dir;
     const auto recording = (dir.in() / "truth.wav").string();
     REQUIRE(runRenderer({ "-o", recording, "--hit", "0:84", "--seconds", "1", "--set", "batter_tension=4200", "--set", "damping=40",
@@ -371,7 +374,7 @@ TEST_CASE("match: a SnareSim strike matched within 2 dB whole-strike distance, t
     const auto preset = dir.out() / "match.snarepreset";
     const auto start = std::chrono::steady_clock::now();
     const auto run = runRenderer({ "--match", recording, "-o", preset.string(), "--match-params",
-                                   "batter_tension,damping,snare_tension,strike_position,velocity", "--match-budget", "120", "--json" },
+                                   "batter_tension,damping,snare_tension,strike_position,velocity", "--match-budget", "160", "--json" },
                                  dir.root() / "capture");
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     INFO("stderr: " << run.err);
@@ -382,7 +385,7 @@ TEST_CASE("match: a SnareSim strike matched within 2 dB whole-strike distance, t
     WARN("whole-strike distance " << printed_dB << " dB at velocity " << velocity << " (distance " << (double) json["distance"] << ") in "
                                   << (int) json["renders"] << " renders, " << seconds << " s");
     CHECK(printed_dB < 2.0);
-    CHECK((int) json["renders"] <= 120);
+    CHECK((int) json["renders"] <= 160);
 
     // The written preset at the reported velocity, rendered and measured by --distance.
     const auto again = dir.out() / "again.wav";
