@@ -1,42 +1,85 @@
 // The microphones' loops (the cells' volume accelerations each step, the taps' sums each block),
 // compiled once per vector target by PerVectorTarget.inl: no include guard, no includes.
 
-// A microphone's taps over a block of up to Lanes steps, a run per whole delay d: each tap's
-// source row holds its A at the block's steps (b = 0 .. Lanes - 1; the steps beyond the block
-// are summed too, and not added: addTapTiles), so a tap adds now * A[b] and next * A[b] to its
-// run's sums at step b, whole rows, no gathers. Each
-// run's sums are kept by lane (the tap's place in the run modulo Lanes) and step, into the
-// tiles tile[(d Lanes + b) Lanes + lane], for addTapTiles.
+// One run's taps with one gain each (taps begin .. end - 1) over a block of up to 8 steps: each
+// tap's source row holds its A at the block's steps, so the tap adds gain * A[b] to the run's sum
+// at step b, whole rows, no gathers, kept by lane (the tap's place in the run modulo 8) and step,
+// 8 rows of sums in registers; the taps of a lane add in their order. Into tile[b 8 + lane]
+// (transposed in registers).
+inline void sumRun(int begin, int end, const int* __restrict cell, const float* __restrict gain, const float* __restrict rows,
+                   float* __restrict tile)
+{
+    using Row = float __attribute__((vector_size(32)));
+    Row s[8] = {}; // s[lane][step]
+    int c = begin;
+    for (; c + 8 <= end; c += 8)
+    {
+#pragma GCC unroll 8
+        for (int lane = 0; lane < 8; ++lane)
+        {
+            Row a;
+            std::memcpy(&a, rows + (size_t) cell[c + lane] * 8, sizeof a);
+            s[lane] += gain[c + lane] * a;
+        }
+    }
+#pragma GCC unroll 8
+    for (int lane = 0; lane < 8; ++lane) // the last round's (a constant lane keeps the sums in registers)
+        if (c + lane < end)
+        {
+            Row a;
+            std::memcpy(&a, rows + (size_t) cell[c + lane] * 8, sizeof a);
+            s[lane] += gain[c + lane] * a;
+        }
+
+    // 8 x 8 transpose: pairs of rows interleaved by 1, 2 and 4 floats
+    using Index = int __attribute__((vector_size(32)));
+#if defined(__clang__)
+#define SNARESIM_SHUFFLE(x, y, ...) __builtin_shufflevector(x, y, __VA_ARGS__)
+#else
+#define SNARESIM_SHUFFLE(x, y, ...) __builtin_shuffle(x, y, Index { __VA_ARGS__ })
+#endif
+    Row t[8], u[8];
+#pragma GCC unroll 4
+    for (int i = 0; i < 8; i += 2)
+    {
+        t[i] = SNARESIM_SHUFFLE(s[i], s[i + 1], 0, 8, 1, 9, 4, 12, 5, 13);
+        t[i + 1] = SNARESIM_SHUFFLE(s[i], s[i + 1], 2, 10, 3, 11, 6, 14, 7, 15);
+    }
+#pragma GCC unroll 2
+    for (int i = 0; i < 8; i += 4)
+#pragma GCC unroll 2
+        for (int j = 0; j < 2; ++j)
+        {
+            u[i + j] = SNARESIM_SHUFFLE(t[i + j], t[i + j + 2], 0, 1, 8, 9, 4, 5, 12, 13);
+            u[i + j + 2] = SNARESIM_SHUFFLE(t[i + j], t[i + j + 2], 2, 3, 10, 11, 6, 7, 14, 15);
+        }
+#pragma GCC unroll 4
+    for (int j = 0; j < 4; ++j)
+    {
+        const Row low = SNARESIM_SHUFFLE(u[j], u[j + 4], 0, 1, 2, 3, 8, 9, 10, 11);
+        const Row high = SNARESIM_SHUFFLE(u[j], u[j + 4], 4, 5, 6, 7, 12, 13, 14, 15);
+        std::memcpy(tile + (size_t) ((j & 1) * 2 + (j >> 1)) * 8, &low, sizeof low);
+        std::memcpy(tile + (size_t) ((j & 1) * 2 + (j >> 1) + 4) * 8, &high, sizeof high);
+    }
+#undef SNARESIM_SHUFFLE
+}
+
+// A microphone's taps over a block of up to Lanes (8) steps, a run per whole delay d (the steps
+// beyond the block are summed too, and not added: addTapTiles): each tap adds now * A[b] to its
+// run's sum at step b and next * A[b] to the one a sample later, into the tiles
+// tile[(d Lanes + b) Lanes + lane], for addTapTiles.
 template <int Lanes>
 void sumTapBlock(int delays, const int* __restrict runEnd, const int* __restrict cell, const float* __restrict now,
                  const float* __restrict next, const float* __restrict rows, float* __restrict tileNow, float* __restrict tileNext)
 {
+    static_assert(Lanes == 8, "sumRun's rows are 8 floats");
     int t = 0;
     for (int d = 0; d < delays; ++d)
     {
-        float sn[Lanes][Lanes] = {}, sx[Lanes][Lanes] = {}; // [lane][step]
         const int end = runEnd[d];
-        for (int c = t; c < end; c += Lanes)
-            for (int lane = 0; lane < Lanes && c + lane < end; ++lane)
-            {
-                const float* a = rows + (size_t) cell[c + lane] * Lanes;
-                const float n = now[c + lane], x = next[c + lane];
-#pragma omp simd
-                for (int b = 0; b < Lanes; ++b)
-                {
-                    sn[lane][b] += n * a[b];
-                    sx[lane][b] += x * a[b];
-                }
-            }
+        sumRun(t, end, cell, now, rows, tileNow + (size_t) d * Lanes * Lanes);
+        sumRun(t, end, cell, next, rows, tileNext + (size_t) d * Lanes * Lanes);
         t = end;
-        float* tn = tileNow + (size_t) d * Lanes * Lanes;
-        float* tx = tileNext + (size_t) d * Lanes * Lanes;
-        for (int b = 0; b < Lanes; ++b)
-            for (int lane = 0; lane < Lanes; ++lane)
-            {
-                tn[b * Lanes + lane] = sn[lane][b];
-                tx[b * Lanes + lane] = sx[lane][b];
-            }
     }
 }
 
