@@ -168,7 +168,7 @@ void Drum::applyLive(const DrumConfig& next) noexcept
     if (boxAir.active() && (gains[0] != batterHead.forceGain() || gains[1] != carryHead.forceGain()))
         boxAir.refresh(); // the embeddings' gains and the heads' response to forces (allocates nothing)
     wires.setCoefficients(n.snares.tension_N, n.snares.sigma0_per_s, n.snares.sigma1_m2_per_s);
-    snareCoupling.setLaw(n.snares.stiffness, n.snares.exponent);
+    snareCoupling.setLaw(n.snares.stiffness, n.snares.exponent, n.snares.contactDamping_s_per_m);
     cavityAir.setSpec(n.cavity, n.batter.radius_m);
     attachedAir.each([&](auto& air) { air.setSpec(n); });
     for (auto& m : mallets)

@@ -157,6 +157,8 @@ void DrumConfig::validate() const
     require(std::isfinite(snares.gridCoarseness) && snares.gridCoarseness >= 1.0,
             "snare grid coarseness must be >= 1: a grid finer than the stability bound (eq. 40) is unstable", snares.gridCoarseness);
     require(std::isfinite(snares.stiffness) && snares.stiffness > 0.0, "snare contact stiffness must be positive", snares.stiffness);
+    require(std::isfinite(snares.contactDamping_s_per_m) && snares.contactDamping_s_per_m >= 0.0, "snare contact damping must be >= 0",
+            snares.contactDamping_s_per_m);
     require(std::isfinite(snares.exponent) && snares.exponent >= 1.0 && snares.exponent <= 4.0,
             "snare contact exponent must be within 1..4", snares.exponent);
     if (snares.count > 0)
@@ -270,6 +272,7 @@ DrumConfig DrumConfig::lossless() const
     c.carry.sigma1_m2_per_s = 0.0;
     c.snares.sigma0_per_s = 0.0;
     c.snares.sigma1_m2_per_s = 0.0;
+    c.snares.contactDamping_s_per_m = 0.0;
     c.airBox.walls = AirWalls::reflecting;
     c.airBox.sigma_m = 0.0;
     for (RadiationChannelSpec* ch : { &c.outside.monopole, &c.outside.dipole, &c.outside.tiltSum, &c.outside.tiltDiff })
@@ -343,6 +346,7 @@ DrumConfig mapParametersAt(const ParameterSet& p, double sampleRate_Hz, double c
     c.snares.engaged = p.get(ParamId::snaresEngaged) >= 0.5;
     c.snares.count = (int) std::lround(p.get(ParamId::snareCount));
     c.snares.scheme = p.get(ParamId::snareSolver) >= 0.5 ? CollisionScheme::newton : CollisionScheme::quadratised;
+    c.snares.contactDamping_s_per_m = p.get(ParamId::snareDamping);
     c.cavity.shellDepth_m = p.get(ParamId::shellDepth);
     c.cavity.gridShellDepth_m = spec(ParamId::shellDepth).minValue;
     c.outside.enabled = p.get(ParamId::outsideAir) > 0.5;

@@ -103,6 +103,9 @@ constexpr std::array<ParameterSpec, kNumParameters> kSpecs {{
     { P::nearField, "near_field", "Near field", "", 0.0, 1.0, 0.0, S::linear, N::newModel,
       "With the outside air: the air sloshing beside the heads weighs on their higher modes and lowers them 7-11 %, as the air box does; the drum then costs about 1.6 times as much (BENCHMARKS.md), so it is off by default; the air box has its own",
       B, "off|on", "heads" },
+    { P::snareDamping, "snare_damping", "Snare contact damping", "s/m", 0.0, 20.0, 0.0, S::linear, N::coefficients,
+      "Damping lambda of the snares' collisions with the carry head (Hunt and Crossley): the contact force kappa xi^beta (1 + lambda dxi/dt); 0 is the paper's elastic contact, higher shortens the buzz's high tail",
+      C, "", "snares" },
 }};
 // clang-format on
 

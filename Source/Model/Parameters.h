@@ -66,6 +66,8 @@ enum class ParamId : std::size_t
     keepUp,
     // the near field of the outside air, apart from its channels (appended likewise)
     nearField,
+    // the snares' contact damping (appended likewise)
+    snareDamping,
     count
 };
 

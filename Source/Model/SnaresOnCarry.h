@@ -21,7 +21,7 @@ public:
     static constexpr int head = 1;
 
     SnaresOnCarry(const DrumConfig& c, Membrane&, Membrane& carry, double k)
-        : wires(c.fittedSnares(), c.carry.radius_m, k), coupling(c.snares, wires, carry), engaged(c.snares.engaged), saved(wires.uNext)
+        : wires(c.fittedSnares(), c.carry.radius_m, k), coupling(c.snares, wires, carry, k), engaged(c.snares.engaged), saved(wires.uNext)
     {}
 
     template <class Lap>

@@ -13,10 +13,10 @@
 namespace snaresim
 {
 
-SnareContact::SnareContact(const SnareSpec& spec, SnareWires& wires, Membrane& carry)
-    : method(spec.scheme), hs(wires.spacing()), snares(wires), head(carry)
+SnareContact::SnareContact(const SnareSpec& spec, SnareWires& wires, Membrane& carry, double timeStep_s)
+    : method(spec.scheme), hs(wires.spacing()), timeStep(timeStep_s), snares(wires), head(carry)
 {
-    setLaw(spec.stiffness, spec.exponent);
+    setLaw(spec.stiffness, spec.exponent, spec.contactDamping_s_per_m);
     const auto& grid = carry.grid();
     const int M = wires.intervals(), stride = M + 1;
     std::map<int, std::pair<std::vector<int>, std::vector<int>>> byNode; // head node -> (points, ends)
@@ -87,8 +87,8 @@ SnareContact::SnareContact(const SnareSpec& spec, SnareWires& wires, Membrane& c
     wireInterior = M - 1;
     for (auto* v : { &groupW0, &groupCc, &groupW })
         v->assign(groupNode.size(), 0.0);
-    for (auto* v : { &gq, &alphaQ, &betaQ, &uFree, &pointW0, &pointCc, &pointS, &pointW, &solveXiPrev, &solveXiNow, &solveXiNext, &solvePsi,
-                     &solveDropped })
+    for (auto* v : { &gq, &alphaQ, &betaQ, &uFree, &dampQ, &pointW0, &pointCc, &pointS, &pointW, &solveXiPrev, &solveXiNow, &solveXiNext,
+                     &solvePsi, &solveDropped })
         v->assign(numPoints, 0.0);
     for (auto* v : { &solveGroupW0, &solveGroupCc, &solveGroupS, &solveGroupW })
         v->assign(groupNode.size(), 0.0);
@@ -103,13 +103,14 @@ SnareContact::SnareContact(const SnareSpec& spec, SnareWires& wires, Membrane& c
     xiNext.assign(numPoints, 0.0);
     xiNow = xiNext;
     xiPrev = xiNext;
-    for (auto* v : { &a, &b, &r, &psi, &dpsi, &phiA })
+    for (auto* v : { &a, &b, &r, &psi, &dpsi, &phiA, &damp })
         v->assign(largest, 0.0);
     active.assign(largest, 0);
 }
 
-void SnareContact::setLaw(double stiffness, double exponent)
+void SnareContact::setLaw(double stiffness, double exponent, double damping_s_per_m)
 {
+    dampingPerStep = damping_s_per_m / (2.0 * timeStep);
     law.kappa = stiffness;
     law.alpha = exponent;
     gScale = std::sqrt(0.5 * stiffness * (exponent + 1.0));
@@ -152,16 +153,21 @@ void SnareContact::expandToPoints(const std::vector<SizeClass>& layout, const do
             std::memcpy(perPoint + c.pointBegin + j * c.groupCount, perGroup + c.groupBegin, sizeof(double) * (size_t) c.groupCount);
 }
 
-void SnareContact::coefficients(int count, const int* wireNode, const double* xiBefore, const double* psiBefore, const double* W0,
-                                const double* cc, double gammaS, const double* u)
+void SnareContact::coefficients(int count, const int* wireNode, const double* xiBefore, const double* xiAt, const double* psiBefore,
+                                const double* W0, const double* cc, double gammaS, const double* u)
 {
-    // f = A + B xi^{n+1} with B = g^2/4, A = g psi^{n-1/2} - B xi^{n-1}, and
+    // f = A + B xi^{n+1} with B = g^2/4 + D, A = g psi^{n-1/2} - B xi^{n-1}, and
     // xi^{n+1} = xi* - gammaS f - cc h_s S, S = sum f over the group. Eliminating xi^{n+1}:
     // f = alpha - beta S with alpha = (A + B xi*) / (1 + gammaS B), beta = cc h_s B / (1 + gammaS B).
+    // D = lambda Phi'(xi^n) / (2k) >= 0: the contact's damping (Hunt and Crossley), a force
+    // D (xi^{n+1} - xi^{n-1}) whose work D (xi^{n+1} - xi^{n-1})^2 h_s / 2 is a loss.
+    const bool damped = dampingPerStep > 0.0;
     if (quarterPower)
     {
-        SNARESIM_ON_VECTOR_TARGET(hertzCoefficients)
-        (count, wireNode, xiBefore, u, psiBefore, W0, cc, hs, psiScale, gammaS, gq.data(), alphaQ.data(), betaQ.data(), uFree.data());
+        const auto kernel =
+            damped ? SNARESIM_ON_VECTOR_TARGET(hertzCoefficients<true>) : SNARESIM_ON_VECTOR_TARGET(hertzCoefficients<false>);
+        kernel(count, wireNode, xiBefore, xiAt, u, psiBefore, W0, cc, hs, psiScale, gammaS, dampingPerStep * law.kappa, gq.data(),
+               alphaQ.data(), betaQ.data(), uFree.data(), dampQ.data());
         return;
     }
     for (int t = 0; t < count; ++t)
@@ -169,7 +175,12 @@ void SnareContact::coefficients(int count, const int* wireNode, const double* xi
         const double us = u[wireNode[t]], a = xiBefore[t];
         const double predicted = us - W0[t];
         const double gp = psiSlope(a, predicted);
-        const double B = 0.25 * gp * gp;
+        double B = 0.25 * gp * gp;
+        if (damped)
+        {
+            dampQ[(size_t) t] = dampingPerStep * law.dphi(xiAt[t]);
+            B += dampQ[(size_t) t];
+        }
         const double d = 1.0 / (1.0 + gammaS * B);
         gq[(size_t) t] = gp;
         alphaQ[(size_t) t] = (gp * psiBefore[t] + B * (predicted - a)) * d;
@@ -207,8 +218,8 @@ SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wire
     // leave them. The work is at most that of every point touching.
     for (const SizeClass& c : classes)
         SNARESIM_ON_VECTOR_TARGET(predictClass)
-        (c.size, c.groupCount, pointWireNode.data() + c.pointBegin, u, groupW0.data() + c.groupBegin, xiPrev.data() + c.pointBegin,
-         psiQ.data() + c.pointBegin, xiNext.data() + c.pointBegin, groupReach.data() + c.groupBegin);
+    (c.size, c.groupCount, pointWireNode.data() + c.pointBegin, u, groupW0.data() + c.groupBegin, xiPrev.data() + c.pointBegin,
+     psiQ.data() + c.pointBegin, xiNext.data() + c.pointBegin, groupReach.data() + c.groupBegin);
     for (int g : endGroups)
         groupReach[(size_t) g] = 1.0;
     int solvedGroups = 0, solvedPoints = 0;
@@ -266,7 +277,7 @@ SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wire
     }
     expandToPoints(layout, W0, pointW0.data());
     expandToPoints(layout, cc, pointCc.data());
-    coefficients(m, wireNode, before, psiSolved, pointW0.data(), pointCc.data(), gammaS, u);
+    coefficients(m, wireNode, before, now, psiSolved, pointW0.data(), pointCc.data(), gammaS, u);
 
     // Per group: S = sum alpha / (1 + sum beta) and W; then the node and the ends (eq. 32a).
     // Every group's node is written, those left out with W0 (their free value), so that the
@@ -274,8 +285,8 @@ SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wire
     // order whichever groups were solved.
     for (const SizeClass& c : layout)
         SNARESIM_ON_VECTOR_TARGET(solveClass)
-        (c.size, c.groupCount, alphaQ.data() + c.pointBegin, betaQ.data() + c.pointBegin, W0 + c.groupBegin, cc + c.groupBegin, hs,
-         solveGroupS.data() + c.groupBegin, W + c.groupBegin);
+    (c.size, c.groupCount, alphaQ.data() + c.pointBegin, betaQ.data() + c.pointBegin, W0 + c.groupBegin, cc + c.groupBegin, hs,
+     solveGroupS.data() + c.groupBegin, W + c.groupBegin);
     if (! whole)
     {
         std::memcpy(groupW.data(), groupW0.data(), sizeof(double) * (size_t) numGroups);
@@ -289,9 +300,10 @@ SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wire
     // Per point: the force, the wire, the gap and psi at n+1/2, put back in place.
     expandToPoints(layout, solveGroupS.data(), pointS.data());
     expandToPoints(layout, W, pointW.data());
-    SNARESIM_ON_VECTOR_TARGET(finishPoints)
-    (m, alphaQ.data(), betaQ.data(), gq.data(), pointS.data(), pointW.data(), gammaS, before, now, uFree.data(), xiSolved, psiSolved,
-     solveDropped.data());
+    const auto finish =
+        dampingPerStep > 0.0 ? SNARESIM_ON_VECTOR_TARGET(finishPoints<true>) : SNARESIM_ON_VECTOR_TARGET(finishPoints<false>);
+    finish(m, alphaQ.data(), betaQ.data(), gq.data(), pointS.data(), pointW.data(), gammaS, before, now, dampQ.data(), uFree.data(),
+           xiSolved, psiSolved, solveDropped.data());
     SNARESIM_ON_VECTOR_TARGET(scatterPoints)(m, wireNode, uFree.data(), u);
     if (! whole)
     {
@@ -300,7 +312,7 @@ SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wire
     }
 
     // The points left out are apart (xi* <= 0) and hold no psi: the deepest gap, the points
-    // touching and psi's resets are among those solved.
+    // touching, psi's resets and the damping's work are among those solved.
     SnareSolveResult result;
     const double sumRemoved =
         SNARESIM_ON_VECTOR_TARGET(summarise)(m, xiSolved, solveDropped.data(), result.maxPenetration_m, result.contacts);
@@ -311,6 +323,7 @@ SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wire
 SnareSolveResult SnareContact::stepNewton(Membrane& carry, SnareWires& wires)
 {
     SnareSolveResult result;
+    lastCorrection = 0.0; // the damping's work, summed over the groups solved
     const double* u = wires.uNext.data();
     const double nan = std::numeric_limits<double>::quiet_NaN();
     for (int g = 0; g < (int) groupNode.size(); ++g)
@@ -352,9 +365,11 @@ void SnareContact::solveGroup(int g, Membrane& carry, SnareWires& wires, SnareSo
     eliminateEnds(g, carry, wires, carry.forceGainAt(node) / (h * h), W0, cc);
     const double coupling = cc * hs; // node response to a contact force density at any of its points
 
-    // Collisions (eq. 50) restricted to this node: r_m + gammaS psi_m + coupling sum psi + b_m = 0,
-    // r = xi^{n+1} - xi^{n-1}, a = xi^{n-1}, b = a - (u* - W0). Forces are >= 0 and only lift
-    // the node, so points apart at n-1 and apart without forces stay apart.
+    // Collisions (eq. 50) restricted to this node: r_m + gammaS F_m + coupling sum F + b_m = 0,
+    // r = xi^{n+1} - xi^{n-1}, a = xi^{n-1}, b = a - (u* - W0), F = psi(r; a) + D r with the
+    // contact's damping D = lambda Phi'(xi^n) / (2k) (Hunt and Crossley; 0 while apart at n).
+    // Forces are >= 0 and only lift the node, so points apart at n-1 and apart without forces
+    // stay apart.
     const int* p0 = groupMembers.data() + groupMemberBegin[(size_t) g];
     const int* p1 = groupMembers.data() + groupMemberBegin[(size_t) g + 1];
     int m = 0;
@@ -369,6 +384,7 @@ void SnareContact::solveGroup(int g, Membrane& carry, SnareWires& wires, SnareSo
             a[(size_t) m] = aPrev;
             phiA[(size_t) m] = law.phi(aPrev);
             b[(size_t) m] = aPrev - xiFree;
+            damp[(size_t) m] = dampingPerStep * law.dphi(xiNow[(size_t) p]);
             ++m;
         }
     }
@@ -376,8 +392,10 @@ void SnareContact::solveGroup(int g, Membrane& carry, SnareWires& wires, SnareSo
     double H = 0.0; // total contact force on the node (N)
     if (m == 1)
     {
+        // (1 + G D) r + G psi + b = 0 with G = gammaS + coupling: eq. (50)'s form, scaled
         int its = 0;
-        r[0] = solveCollision(law, gammaS + coupling, a[0], b[0], its, rLast[(size_t) active[0]]);
+        const double scale = 1.0 / (1.0 + (gammaS + coupling) * damp[0]);
+        r[0] = solveCollision(law, (gammaS + coupling) * scale, a[0], b[0] * scale, its, rLast[(size_t) active[0]]);
         result.iterations = std::max(result.iterations, its);
     }
     else if (m > 1)
@@ -396,7 +414,8 @@ void SnareContact::solveGroup(int g, Membrane& carry, SnareWires& wires, SnareSo
         rLast[(size_t) *q] = std::numeric_limits<double>::quiet_NaN();
     for (int i = 0; i < m; ++i)
     {
-        psi[(size_t) i] = law.psi(r[(size_t) i], a[(size_t) i]); // eq. (30)
+        psi[(size_t) i] = law.psi(r[(size_t) i], a[(size_t) i]) + damp[(size_t) i] * r[(size_t) i]; // eq. (30), and the damping
+        lastCorrection += 0.5 * hs * damp[(size_t) i] * r[(size_t) i] * r[(size_t) i];
         H += hs * psi[(size_t) i];
         rLast[(size_t) active[(size_t) i]] = r[(size_t) i];
     }
@@ -419,8 +438,8 @@ void SnareContact::solveGroup(int g, Membrane& carry, SnareWires& wires, SnareSo
 
 bool SnareContact::solveGroupNewton(int m, double gammaS, double coupling, int& iterations)
 {
-    // Newton on eq. (50) for the node: J = diag(1 + gammaS psi') + coupling 1 psi'^T, solved by
-    // Sherman-Morrison in O(m), from the last step's roots (or r = -b, no force).
+    // Newton on eq. (50) for the node: J = diag(1 + gammaS F') + coupling 1 F'^T (F = psi + D r),
+    // solved by Sherman-Morrison in O(m), from the last step's roots (or r = -b, no force).
     for (int i = 0; i < m; ++i)
     {
         const double last = rLast[(size_t) active[(size_t) i]];
@@ -434,8 +453,8 @@ bool SnareContact::solveGroupNewton(int m, double gammaS, double coupling, int& 
         for (int i = 0; i < m; ++i)
         {
             const auto sec = law.secant(r[(size_t) i], a[(size_t) i], phiA[(size_t) i]);
-            psi[(size_t) i] = sec.psi;
-            dpsi[(size_t) i] = sec.dpsi;
+            psi[(size_t) i] = sec.psi + damp[(size_t) i] * r[(size_t) i];
+            dpsi[(size_t) i] = sec.dpsi + damp[(size_t) i];
             sumPsi += psi[(size_t) i];
         }
         double vy = 0.0, vz = 0.0;
@@ -468,21 +487,28 @@ bool SnareContact::solveGroupNewton(int m, double gammaS, double coupling, int& 
     return false;
 }
 
+double SnareContact::solvePoint(int i, double gamma, double bi, int& iterations) const
+{
+    // r + gamma (psi + D r) + b = 0 is eq. (50)'s scalar form with gamma and b over 1 + gamma D
+    const double scale = 1.0 / (1.0 + gamma * damp[(size_t) i]);
+    return solveCollision(law, gamma * scale, a[(size_t) i], bi * scale, iterations);
+}
+
 bool SnareContact::solveGroupReduced(int m, double gammaS, double coupling, int& iterations)
 {
-    // Eq. (50) on one node: the points see each other only through S = sum psi, so for a given
+    // Eq. (50) on one node: the points see each other only through S = sum F, so for a given
     // S each point solves its own scalar equation (bracketed, solveCollision) and
-    // the group reduces to the monotone scalar equation g(S) = S - sum psi_m(S) = 0, solved by
-    // Newton with g'(S) = 1 + sum coupling psi'_m / (1 + gammaS psi'_m) >= 1, kept in its bracket.
+    // the group reduces to the monotone scalar equation g(S) = S - sum F_m(S) = 0, solved by
+    // Newton with g'(S) = 1 + sum coupling F'_m / (1 + gammaS F'_m) >= 1, kept in its bracket.
     auto evaluate = [&](double S, double& derivative) {
         double sum = 0.0;
         derivative = 1.0;
         int inner = 0;
         for (int i = 0; i < m; ++i)
         {
-            r[(size_t) i] = solveCollision(law, gammaS, a[(size_t) i], b[(size_t) i] + coupling * S, inner);
-            const double slope = law.dpsi(r[(size_t) i], a[(size_t) i]);
-            sum += law.psi(r[(size_t) i], a[(size_t) i]);
+            r[(size_t) i] = solvePoint(i, gammaS, b[(size_t) i] + coupling * S, inner);
+            const double slope = law.dpsi(r[(size_t) i], a[(size_t) i]) + damp[(size_t) i];
+            sum += law.psi(r[(size_t) i], a[(size_t) i]) + damp[(size_t) i] * r[(size_t) i];
             derivative += coupling * slope / (1.0 + gammaS * slope);
         }
         iterations += inner;
@@ -516,16 +542,16 @@ bool SnareContact::solveGroupReduced(int m, double gammaS, double coupling, int&
 
 double SnareContact::solveFallback(int m, double gammaS, double coupling)
 {
-    // Bracketed fallback: for a given total S = sum psi every point solves its own scalar
-    // equation; sum psi(S) is non-increasing in S, so S = sum psi(S) has one root, found by
+    // Bracketed fallback: for a given total S = sum F every point solves its own scalar
+    // equation; sum F(S) is non-increasing in S, so S = sum F(S) has one root, found by
     // bisection. Always finite; the iteration count is bounded.
     auto total = [&](double S) {
         double sum = 0.0;
         for (int i = 0; i < m; ++i)
         {
             int its = 0;
-            r[(size_t) i] = solveCollision(law, gammaS, a[(size_t) i], b[(size_t) i] + coupling * S, its);
-            sum += law.psi(r[(size_t) i], a[(size_t) i]);
+            r[(size_t) i] = solvePoint(i, gammaS, b[(size_t) i] + coupling * S, its);
+            sum += law.psi(r[(size_t) i], a[(size_t) i]) + damp[(size_t) i] * r[(size_t) i];
         }
         return sum;
     };

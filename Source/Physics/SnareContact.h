@@ -65,12 +65,14 @@ public:
     static constexpr double tolerance = 1.0e-14;      // Newton step / (|r| + |a| + |b|)
     static constexpr double groupTolerance = 1.0e-12; // on the total force of a node group
 
-    // The wires and the carry head it couples (both must outlive it).
-    SnareContact(const SnareSpec& spec, SnareWires& wires, Membrane& carry);
+    // The wires and the carry head it couples (both must outlive it); k, the time step.
+    SnareContact(const SnareSpec& spec, SnareWires& wires, Membrane& carry, double timeStep_s);
 
     CollisionScheme scheme() const { return method; }
 
-    void setLaw(double stiffness, double exponent);
+    // The force kappa [xi]_+^beta (1 + lambda dxi/dt) (Hunt and Crossley; lambda = 0: eq. 16's
+    // elastic law): kappa, beta and lambda (s/m).
+    void setLaw(double stiffness, double exponent, double damping_s_per_m);
 
     // After the free updates of the carry head and the wires: solve the collisions and the
     // attachments, and write w_c^{n+1} at the touched nodes and u^{n+1} of the wires.
@@ -80,8 +82,8 @@ public:
     // h_s sum psi^2 / 2). The attached ends store none.
     double energy() const;
     double energyBeforeStep() const; // at n-1/2
-    // Energy the quadratised scheme removed in the last step by resetting psi of separated points
-    // (0 with Newton): its only loss.
+    // Energy the last step removed: the contact's damping's work and, quadratised, psi reset at
+    // separated points (h_s psi^2 / 2).
     double stepLoss() const { return lastCorrection; }
     double maxPenetration() const;    // largest xi^{n+1} (m), 0 when apart
     double quadratisedEnergy() const; // h_s sum psi^2 / 2
@@ -136,15 +138,19 @@ private:
     void solveGroup(int group, Membrane& carry, SnareWires& wires, SnareSolveResult& result);
     bool solveGroupNewton(int m, double gammaS, double coupling, int& iterations);
     bool solveGroupReduced(int m, double gammaS, double coupling, int& iterations);
+    // point i of the group alone, its force's sum over the group held: r + gamma F + bi = 0
+    double solvePoint(int i, double gamma, double bi, int& iterations) const;
     double solveFallback(int m, double gammaS, double coupling);
 
     PowerLawPotential law;
     CollisionScheme method;
     double hs;
-    double gScale = 0.0;        // sqrt(kappa (beta + 1) / 2)
-    double psiScale = 0.0;      // sqrt(2 kappa / (beta + 1))
-    double halfExponent = 0.25; // (beta - 1) / 2
-    bool quarterPower = true;   // beta = 1.5: hertzCoefficients
+    double timeStep;
+    double dampingPerStep = 0.0; // lambda / (2k): D = dampingPerStep Phi'(xi^n)
+    double gScale = 0.0;         // sqrt(kappa (beta + 1) / 2)
+    double psiScale = 0.0;       // sqrt(2 kappa / (beta + 1))
+    double halfExponent = 0.25;  // (beta - 1) / 2
+    bool quarterPower = true;    // beta = 1.5: hertzCoefficients
     double lastCorrection = 0.0;
     // contact points (in class layout, above): wire-array index of the node, head node
     std::vector<int> pointWireNode, pointHeadNode;
@@ -165,11 +171,11 @@ private:
     int wireInterior = 0;             // interior nodes per wire, M - 1
     // Newton: per-group scratch (sized for the largest group)
     std::vector<int> active;
-    std::vector<double> a, b, r, psi, dpsi, phiA;
+    std::vector<double> a, b, r, psi, dpsi, phiA, damp; // damp: D per point
     // quadratised: per group W0, c' and W (all groups); per point solved g,
     // alpha, beta, u*
     std::vector<double> groupW0, groupCc, groupW;
-    std::vector<double> gq, alphaQ, betaQ, uFree;
+    std::vector<double> gq, alphaQ, betaQ, uFree, dampQ;  // dampQ: D per point
     std::vector<double> pointW0, pointCc, pointS, pointW; // each point's group's W0, c', S, W
     // The solve's subset: per group its reach (predictClass: positive when it takes part), the
     // groups and points that do (the class layout over them: activeClasses), their values gathered.
@@ -181,9 +187,10 @@ private:
     bool solveEveryPoint = false;
     int lastSolvedPoints = 0;
     static void expandToPoints(const std::vector<SizeClass>& layout, const double* perGroup, double* perPoint);
-    // alpha, beta, g and u* of `count` points into alphaQ, betaQ, gq and uFree
-    void coefficients(int count, const int* wireNode, const double* xiBefore, const double* psiBefore, const double* W0, const double* cc,
-                      double gammaS, const double* u);
+    // alpha, beta, g, u* and D of `count` points into alphaQ, betaQ, gq, uFree and dampQ
+    // (xiBefore: xi^{n-1}, xiAt: xi^n)
+    void coefficients(int count, const int* wireNode, const double* xiBefore, const double* xiAt, const double* psiBefore, const double* W0,
+                      const double* cc, double gammaS, const double* u);
 
     SnareWires& snares;
     Membrane& head; // the carry head

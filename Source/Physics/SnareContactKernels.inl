@@ -8,9 +8,13 @@
 // xi^{n-1} to xi*. While both touch, with x, y their fourth roots, it is
 // (y^5 - x^5) / (y^4 - x^4) = (x^4 + x^3 y + x^2 y^2 + x y^3 + y^4) / ((x + y)(x^2 + y^2)):
 // no difference of near values, down to the tangent (5/4) x when they meet.
-void hertzCoefficients(int count, const int* __restrict wireNode, const double* __restrict xiPrev, const double* __restrict u,
-                       const double* __restrict psi, const double* __restrict W0, const double* __restrict cc, double hs, double psiScale,
-                       double gammaS, double* __restrict gq, double* __restrict alpha, double* __restrict beta, double* __restrict uFree)
+// Damped: the contact's damping D = damping [xi^n]_+^(3/2) (lambda kappa xi^beta / (2k), Hunt and
+// Crossley) adds D (xi^{n+1} - xi^{n-1}) to the force, so it joins B = g^2 / 4; into damp[k].
+template <bool Damped>
+void hertzCoefficients(int count, const int* __restrict wireNode, const double* __restrict xiPrev, const double* __restrict xiNow,
+                       const double* __restrict u, const double* __restrict psi, const double* __restrict W0, const double* __restrict cc,
+                       double hs, double psiScale, double gammaS, double damping, double* __restrict gq, double* __restrict alpha,
+                       double* __restrict beta, double* __restrict uFree, double* __restrict damp)
 {
     for (int k = 0; k < count; ++k)
     {
@@ -28,7 +32,14 @@ void hertzCoefficients(int count, const int* __restrict wireNode, const double* 
         const float num = both ? (x2 * x2 + x * y * (x2 + y2) + x2 * y2) + y2 * y2 : bf * y - af * x;
         const float den = both ? (x + y) * (x2 + y2) : (span != 0.0 ? (float) span : 1.0f);
         const double g = psiScale * (double) (num / den);
-        const double B = 0.25 * g * g;
+        double B = 0.25 * g * g;
+        if constexpr (Damped)
+        {
+            const double now = xiNow[k] > 0.0 ? xiNow[k] : 0.0;
+            const double D = damping * now * std::sqrt(now);
+            damp[k] = D;
+            B += D;
+        }
         const double d = 1.0 / (1.0 + gammaS * B);
         gq[k] = g;
         alpha[k] = (g * psi[k] + B * span) * d;
@@ -54,11 +65,13 @@ void gatherScaled(int count, const int* __restrict index, const double* __restri
 
 // Per point, its group's S and W at S[k] and W[k] (copied beside the points): the force
 // f = alpha - beta S, the wire u = u* - gammaS f, the gap xi^{n+1} = u - W and psi at n+1/2;
-// `dropped` gets psi^2 where psi is reset.
+// `dropped` gets psi^2 where psi is reset and, Damped, 2 / h_s times the energy the contact's
+// damping took, damp[k] (xi^{n+1} - xi^{n-1})^2.
+template <bool Damped>
 void finishPoints(int count, const double* __restrict alpha, const double* __restrict beta, const double* __restrict gq,
                   const double* __restrict S, const double* __restrict W, double gammaS, const double* __restrict xiPrev,
-                  const double* __restrict xiNow, double* __restrict uFree, double* __restrict xiNext, double* __restrict psi,
-                  double* __restrict dropped)
+                  const double* __restrict xiNow, const double* __restrict damp, double* __restrict uFree, double* __restrict xiNext,
+                  double* __restrict psi, double* __restrict dropped)
 {
     for (int k = 0; k < count; ++k)
     {
@@ -74,6 +87,11 @@ void finishPoints(int count, const double* __restrict alpha, const double* __res
         // from zero.
         const bool keep = (xiNew > 0.0) | (xiNow[k] > 0.0);
         dropped[k] = keep ? 0.0 : next * next;
+        if constexpr (Damped)
+        {
+            const double r = xiNew - xiPrev[k];
+            dropped[k] += damp[k] * r * r;
+        }
         psi[k] = keep ? next : 0.0;
     }
 }

@@ -25,11 +25,12 @@ struct SnareSpec
     double sigma1_m2_per_s = 2.0e-4;
     double gridTension_N = 0.0; // design values of the wire grid, eq. (40) (0 / < 0: actual)
     double gridSigma1_m2_per_s = -1.0;
-    double gridCoarseness = 1.0;                      // h_s = coarseness * h_s,min(eq. 40); >= 1 (from the schema)
-    double gridTimeStep_s = 0.0;                      // as MembraneSpec::gridTimeStep_s
-    double stiffness = 1.0e9;                         // kappa_s, N/m per m^beta
-    double exponent = 1.5;                            // beta (1 ... 1.5; 1.5 is the Hertz exponent)
-    bool engaged = true;                              // false: thrown off, out of contact (from the schema)
+    double gridCoarseness = 1.0;         // h_s = coarseness * h_s,min(eq. 40); >= 1 (from the schema)
+    double gridTimeStep_s = 0.0;         // as MembraneSpec::gridTimeStep_s
+    double stiffness = 1.0e9;            // kappa_s, N/m per m^beta
+    double exponent = 1.5;               // beta (1 ... 1.5; 1.5 is the Hertz exponent)
+    double contactDamping_s_per_m = 0.0; // lambda: the force kappa xi^beta (1 + lambda dxi/dt) (Hunt and Crossley; from the schema)
+    bool engaged = true;                 // false: thrown off, out of contact (from the schema)
     CollisionScheme scheme = CollisionScheme::newton; // from the schema
 };
 

@@ -74,6 +74,43 @@ TEST_CASE("lossless whole drum with the paper's 7 snares and mallet conserves en
     CHECK(drift.relative < 1e-11);
 }
 
+TEST_CASE("the snares' contact damping only takes energy and the ledger books what it takes", "[drum][energy][snares]")
+{
+    // The drum lossless but for the collisions' damping (Hunt and Crossley, lambda): energy +
+    // losses constant to round-off, the energy never rising, and the damping's work the losses
+    // (with Newton the elastic contact loses nothing; quadratised, psi's resets add theirs).
+    const CollisionScheme scheme = schemeOf(GENERATE(0, 1));
+    double lost[2] = {};
+    for (const double lambda : { 0.0, 5.0 })
+    {
+        DrumConfig cfg = test::wholeDrum().lossless();
+        cfg.snares.scheme = scheme;
+        cfg.snares.contactDamping_s_per_m = lambda;
+        Drum drum(cfg);
+        drum.setEnergyTracking(true);
+        drum.strike(5.0, 0.3, 0.0);
+        const double e0 = drum.energy().total(), b0 = drum.energy().balance();
+        double previous = e0, worstRise = 0.0, worstBalance = 0.0;
+        for (int n = 0; n < 22050; ++n)
+        {
+            drum.step();
+            const double e = drum.energy().total();
+            worstRise = std::max(worstRise, (e - previous) / e0);
+            worstBalance = std::max(worstBalance, std::abs(drum.energy().balance() - b0) / e0);
+            previous = e;
+        }
+        lost[lambda > 0.0] = drum.energy().dissipated_J / e0;
+        INFO(nameOf(scheme) << ", lambda " << lambda << " s/m: largest rise " << worstRise << ", balance drift " << worstBalance
+                            << ", lost " << lost[lambda > 0.0] << " of the strike");
+        CHECK(worstRise < 1e-12); // round-off: the lossless parts hold their energy to it
+        CHECK(worstBalance < 1e-11);
+        CHECK(drum.solverStats().fallbacks == 0);
+    }
+    if (scheme == CollisionScheme::newton)
+        CHECK(lost[0] == 0.0);
+    CHECK(lost[1] > lost[0] + 1e-3);
+}
+
 TEST_CASE("with losses the whole drum's energy never rises and energy + losses is constant", "[drum][energy]")
 {
     DrumConfig cfg = test::wholeDrum();
