@@ -218,8 +218,8 @@ SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wire
     // leave them. The work is at most that of every point touching.
     for (const SizeClass& c : classes)
         SNARESIM_ON_VECTOR_TARGET(predictClass)
-    (c.size, c.groupCount, pointWireNode.data() + c.pointBegin, u, groupW0.data() + c.groupBegin, xiPrev.data() + c.pointBegin,
-     psiQ.data() + c.pointBegin, xiNext.data() + c.pointBegin, groupReach.data() + c.groupBegin);
+        (c.size, c.groupCount, pointWireNode.data() + c.pointBegin, u, groupW0.data() + c.groupBegin, xiPrev.data() + c.pointBegin,
+         psiQ.data() + c.pointBegin, xiNext.data() + c.pointBegin, groupReach.data() + c.groupBegin);
     for (int g : endGroups)
         groupReach[(size_t) g] = 1.0;
     int solvedGroups = 0, solvedPoints = 0;
@@ -285,8 +285,8 @@ SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wire
     // order whichever groups were solved.
     for (const SizeClass& c : layout)
         SNARESIM_ON_VECTOR_TARGET(solveClass)
-    (c.size, c.groupCount, alphaQ.data() + c.pointBegin, betaQ.data() + c.pointBegin, W0 + c.groupBegin, cc + c.groupBegin, hs,
-     solveGroupS.data() + c.groupBegin, W + c.groupBegin);
+        (c.size, c.groupCount, alphaQ.data() + c.pointBegin, betaQ.data() + c.pointBegin, W0 + c.groupBegin, cc + c.groupBegin, hs,
+         solveGroupS.data() + c.groupBegin, W + c.groupBegin);
     if (! whole)
     {
         std::memcpy(groupW.data(), groupW0.data(), sizeof(double) * (size_t) numGroups);
