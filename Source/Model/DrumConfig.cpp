@@ -347,6 +347,7 @@ DrumConfig mapParametersAt(const ParameterSet& p, double sampleRate_Hz, double c
     c.snares.count = (int) std::lround(p.get(ParamId::snareCount));
     c.snares.scheme = p.get(ParamId::snareSolver) >= 0.5 ? CollisionScheme::newton : CollisionScheme::quadratised;
     c.snares.contactDamping_s_per_m = p.get(ParamId::snareDamping);
+    c.snares.stiffness = p.get(ParamId::snareStiffness);
     c.cavity.shellDepth_m = p.get(ParamId::shellDepth);
     c.cavity.gridShellDepth_m = spec(ParamId::shellDepth).minValue;
     c.outside.enabled = p.get(ParamId::outsideAir) > 0.5;

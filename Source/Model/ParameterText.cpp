@@ -58,7 +58,8 @@ std::string fixed(double v, int decimals)
 
 std::string prettyUnit(std::string_view unit)
 {
-    return replaceAll(replaceAll(replaceAll(std::string(unit), "^alpha", "^\xce\xb1"), "^2", "\xc2\xb2"), "^3", "\xc2\xb3");
+    return replaceAll(replaceAll(replaceAll(replaceAll(std::string(unit), "^alpha", "^\xce\xb1"), "^beta", "^\xce\xb2"), "^2", "\xc2\xb2"),
+                      "^3", "\xc2\xb3");
 }
 
 ValueFormat valueFormat(const ParameterSpec& spec)

@@ -106,6 +106,9 @@ constexpr std::array<ParameterSpec, kNumParameters> kSpecs {{
     { P::snareDamping, "snare_damping", "Snare contact damping", "s/m", 0.0, 20.0, 0.0, S::linear, N::coefficients,
       "Damping lambda of the snares' collisions with the carry head (Hunt and Crossley): the contact force kappa xi^beta (1 + lambda dxi/dt); 0 is the paper's elastic contact, higher shortens the buzz's high tail",
       C, "", "snares" },
+    { P::snareStiffness, "snare_stiffness", "Snare contact stiffness", "N/m^beta", 1.0e6, 1.0e10, 1.0e9, S::logarithmic, N::coefficients,
+      "Stiffness kappa_s of the snares' collisions with the carry head (eq. 16), with beta 1.5: the coiled wire's and the head's compliance where they meet; lower is a softer, longer contact with fewer clicks above 10 kHz",
+      C, "", "snares" },
 }};
 // clang-format on
 

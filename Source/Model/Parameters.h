@@ -68,6 +68,8 @@ enum class ParamId : std::size_t
     nearField,
     // the snares' contact damping (appended likewise)
     snareDamping,
+    // the snares' contact stiffness (appended likewise)
+    snareStiffness,
     count
 };
 

@@ -288,7 +288,7 @@ void SnareSimAudioProcessorEditor::resized()
     noteMapLabel.setBounds(footer.withTrimmedLeft(look.pxi(12.0f)));
 
     // Top row: the large knobs and the drum picture.
-    auto top = area.removeFromTop(juce::roundToInt((float) area.getHeight() * 0.47f));
+    auto top = area.removeFromTop(juce::roundToInt((float) area.getHeight() * 0.42f));
     area.removeFromTop(gap);
 
     if (mainPanel != nullptr)

@@ -56,6 +56,8 @@ TEST_CASE("text is read in the written unit, the schema's unit, or by name", "[p
     CHECK(read(ParamId::malletMass, "0.03 kg") == Approx(0.03));
     CHECK(read(ParamId::malletStiffness, "2e8 N/m^alpha") == Approx(2.0e8));
     CHECK(read(ParamId::malletStiffness, "2e8 N/m^\xce\xb1") == Approx(2.0e8));
+    CHECK(read(ParamId::snareStiffness, "3e8 N/m^beta") == Approx(3.0e8));
+    CHECK(read(ParamId::snareStiffness, "3e8 N/m^\xce\xb2") == Approx(3.0e8));
     CHECK(read(ParamId::outputGain, "+3 dB") == Approx(3.0));
     CHECK(read(ParamId::airModel, "cavity") == 1.0);
     CHECK(read(ParamId::airModel, "None") == 0.0);
