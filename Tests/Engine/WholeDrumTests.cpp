@@ -44,6 +44,21 @@ Drift losslessDrift(DrumConfig cfg, double speed, int steps, SolverStats& stats)
 
 CollisionScheme schemeOf(int i) { return i == 0 ? CollisionScheme::newton : CollisionScheme::quadratised; }
 const char* nameOf(CollisionScheme s) { return s == CollisionScheme::newton ? "Newton" : "quadratised"; }
+
+// Share of a signal's energy above f_Hz (its Hann-windowed spectrum).
+double shareAbove(const std::vector<double>& x, double sampleRate_Hz, double f_Hz)
+{
+    const auto X = test::hannSpectrum(x, 1);
+    const double binHz = sampleRate_Hz / (2.0 * (double) X.size());
+    double above = 0.0, all = 0.0;
+    for (size_t i = 1; i < X.size(); ++i)
+    {
+        all += std::norm(X[i]);
+        if ((double) i * binHz > f_Hz)
+            above += std::norm(X[i]);
+    }
+    return above / all;
+}
 } // namespace
 
 TEST_CASE("lossless whole drum conserves energy to round-off (20 snares, cavity)", "[drum][energy]")
@@ -137,17 +152,8 @@ TEST_CASE("a softer snare contact keeps the energy identity and takes the snares
             x.push_back(drum.step());
             drift = std::max(drift, std::abs(drum.energy().balance() - b0) / e0);
         }
-        const auto X = test::hannSpectrum(x, 1);
-        const double binHz = cfg.sampleRate_Hz / (2.0 * (double) X.size());
-        double above = 0.0, all = 0.0;
-        for (size_t i = 1; i < X.size(); ++i)
-        {
-            all += std::norm(X[i]);
-            if ((double) i * binHz > 12000.0)
-                above += std::norm(X[i]);
-        }
         const int i = kappa == soft;
-        high[i] = above / all;
+        high[i] = shareAbove(x, cfg.sampleRate_Hz, 12000.0);
         deepest[i] = drum.solverStats().maxSnarePenetration_m;
         INFO(nameOf(scheme) << ", kappa_s " << kappa << ": balance drift " << drift << ", share above 12 kHz " << high[i]
                             << ", deepest penetration " << deepest[i] * 1e6 << " um");
@@ -258,16 +264,7 @@ double highBandShare(bool snaresOn, CollisionScheme scheme)
         if (n >= from)
             x.push_back(y);
     }
-    const auto X = test::hannSpectrum(x, 1);
-    const double binHz = cfg.sampleRate_Hz / (2.0 * (double) X.size());
-    double high = 0.0, all = 0.0;
-    for (size_t i = 1; i < X.size(); ++i)
-    {
-        all += std::norm(X[i]);
-        if ((double) i * binHz > 2000.0)
-            high += std::norm(X[i]);
-    }
-    return high / all;
+    return shareAbove(x, cfg.sampleRate_Hz, 2000.0);
 }
 } // namespace
 
