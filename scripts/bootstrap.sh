@@ -8,7 +8,7 @@
 #   bash scripts/bootstrap.sh sanitize  # a second build with clang, AddressSanitizer and UBSan in
 #                                       # build-asan/, then the suite there but the tests
 #                                       # labelled slow (the corner test does run)
-#   bash scripts/bootstrap.sh fuzz      # the libFuzzer targets of that build, FUZZ_SECONDS (60) each
+#   bash scripts/bootstrap.sh fuzz      # the libFuzzer targets of that build, FUZZ_SECONDS (30) each
 #
 # Safe to rerun: packages are installed only when missing, and the build in build/ only redoes
 # what changed.
@@ -156,7 +156,7 @@ case "$mode" in
         log "building the fuzzers"
         targets=(fuzz_state fuzz_midi_input fuzz_command_line fuzz_midi_file)
         cmake --build "$build_dir" --target "${targets[@]}" -j "$jobs"
-        seconds=${FUZZ_SECONDS:-60}
+        seconds=${FUZZ_SECONDS:-30}
         status=0
         for target in "${targets[@]}"; do
             name=${target#fuzz_}
