@@ -65,11 +65,12 @@ auto Drum::energyTerms() const
 
 Drum::Drum(const DrumConfig& config)
     : cfg(validated(config)), k(1.0 / config.sampleRate_Hz), cavityAir(cfg.cavity, cfg.batter.radius_m),
-      batterHead(cfg.batter, k, cfg.kineticReserve(true)), carryHead(cfg.carry, k, cfg.kineticReserve(false)),
-      contacts(cfg, batterHead, carryHead, k), mallets(contacts.get<MalletsOnBatter>().mallets), wires(contacts.get<SnaresOnCarry>().wires),
+      batterHead(cfg.batter, k, cfg.kineticReserve(true), cfg.designReserve(true)),
+      carryHead(cfg.carry, k, cfg.kineticReserve(false), cfg.designReserve(false)), contacts(cfg, batterHead, carryHead, k),
+      mallets(contacts.get<MalletsOnBatter>().mallets), wires(contacts.get<SnaresOnCarry>().wires),
       snareCoupling(contacts.get<SnaresOnCarry>().coupling), engaged(contacts.get<SnaresOnCarry>().engaged),
       cavityCoupling(batterHead, carryHead, cavityAir), attachedAir(cfg, batterHead, carryHead, k),
-      pressureMics(cfg.mics, cfg.cavity, cfg.sampleRate_Hz, batterHead, carryHead), toHost(cfg.outputFactor())
+      pressureMics(cfg.mics, cfg.cavity, cfg.sampleRate_Hz, batterHead, carryHead), toHost(cfg.outputUp(), cfg.outputDown())
 {
     if (cfg.cavity.model == AirModel::airbox)
     {
@@ -355,16 +356,17 @@ template <class Lap>
 
 double Drum::step()
 {
-    const int factor = toHost.factor();
-    if (factor == 1)
+    ++samplesRendered;
+    const int up = toHost.factor(), down = toHost.down();
+    if (up == 1)
         return simulate();
-    if (hostPhase == 0)
+    if (hostPhase < down) // the phase passed a multiple of L: a simulated sample is due
     {
         simulate();
         toHost.push({ signals.mix, signals.top_Pa, signals.bottom_Pa, signals.room_Pa });
     }
     lastPhase = hostPhase;
-    hostPhase = hostPhase + 1 == factor ? 0 : hostPhase + 1;
+    hostPhase = hostPhase + down >= up ? hostPhase + down - up : hostPhase + down;
     return toHost.value(0, lastPhase);
 }
 
@@ -418,7 +420,6 @@ double Drum::stepWith(Lap& lap)
                                     m.mixRoom * m.roomGain * signals.room_Pa);
     lap(StepPhase::signals);
 
-    ++samplesRendered;
     batterHead.advance();
     carryHead.advance();
     contacts.each([](auto& contact) { contact.advance(); });

@@ -107,7 +107,8 @@ public:
     bool snaresEngaged() const { return engaged; }
 
     // Advance one sample of the host's rate and return the mixed output sample: a step of the
-    // simulation (one in outputFactor(): on the first of them), the signals interpolated.
+    // simulation where one is due (M in L host samples: HostRateInterpolator.h), the signals
+    // interpolated.
     double step();
     // the last simulated step's signals (at the simulation's rate)
     const MicSignals& lastSignals() const { return signals; }
@@ -199,7 +200,7 @@ private:
 
     PressureMicrophones pressureMics; // the microphones: a listener, no energy, no force
     HostRateInterpolator toHost;      // the signals at the host's rate
-    int hostPhase = 0, lastPhase = 0; // of the next and the last host sample, 0 .. factor - 1
+    int hostPhase = 0, lastPhase = 0; // of the next and the last host sample, 0 .. L - 1
     EnergyLedger ledger;
     int malletsTerm = -1, snaresTerm = -1; // the ledger terms a strike and the snares switch change
     SolverStats stats;

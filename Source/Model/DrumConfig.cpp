@@ -21,8 +21,9 @@ namespace snaresim
 namespace
 {
 // Quality's grids are designed at 48 kHz: at a lower rate the heads and wires keep the grids
-// they have at 48 kHz where those are stable, so the drum is the same at 44.1 kHz (and at
-// 88.2 and 176.4 kHz, simulated at 44.1: HostRateInterpolator.h).
+// they have at 48 kHz where those are stable (designed with the 48 kHz step's reserve:
+// designReserve), so the drum has the same nodes at 44.1 kHz and at the 32 and 33.075 kHz that
+// simulate the default's grids (HostRateInterpolator.h).
 constexpr double kGridDesignStep_s = 1.0 / 48000.0;
 
 void require(bool ok, const char* what, double value)
@@ -34,7 +35,7 @@ void require(bool ok, const char* what, double value)
     throw std::invalid_argument(msg.str());
 }
 
-void validateMembrane(const MembraneSpec& m, double k, double reserve)
+void validateMembrane(const MembraneSpec& m, double k, double reserve, double designReserve)
 {
     require(std::isfinite(m.radius_m) && m.radius_m > 0.01 && m.radius_m < 2.0, "head radius must be within 0.01..2 m", m.radius_m);
     require(std::isfinite(m.density_kg_per_m2) && m.density_kg_per_m2 > 0.0, "head density must be positive", m.density_kg_per_m2);
@@ -47,7 +48,7 @@ void validateMembrane(const MembraneSpec& m, double k, double reserve)
             "the grid's design tension must not be below the tension", m.gridTension_N_per_m);
     require(m.gridSigma1_m2_per_s < 0.0 || m.gridSigma1_m2_per_s >= m.sigma1_m2_per_s, "the grid's design sigma1 must not be below sigma1",
             m.gridSigma1_m2_per_s);
-    const double h = Membrane::gridSpacing(m, k, reserve);
+    const double h = Membrane::gridSpacing(m, k, reserve, designReserve);
     const double pointsPerRadius = m.radius_m / h;
     require(pointsPerRadius >= 4.0,
             "the head grid would have fewer than 4 points per radius at this sample rate and coarseness; raise the sample rate or lower "
@@ -105,10 +106,11 @@ void DrumConfig::validate() const
     require(std::isfinite(sampleRate_Hz) && sampleRate_Hz >= 1000.0 && sampleRate_Hz <= 768000.0,
             "sample rate must be within 1000..768000 Hz", sampleRate_Hz);
     const double k = 1.0 / sampleRate_Hz;
-    const int factor = outputFactor();
-    require(std::isfinite(outputRate()) && std::abs(outputRate() - factor * sampleRate_Hz) <= 1e-9 * outputRate() &&
-                (factor == 1 || ((factor & (factor - 1)) == 0 && factor <= 16 && cavity.model != AirModel::airbox)),
-            "the output rate must be the sample rate times 1, 2, 4, 8 or 16 (1 in the air box)", outputRate());
+    const int up = outputUp(), down = outputDown();
+    const int twos = up % 3 == 0 ? up / 3 : up; // a power of two
+    require(std::isfinite(outputRate()) && std::abs(outputRate() * down - up * sampleRate_Hz) <= 1e-9 * outputRate() &&
+                (up == 1 || (up <= 32 && up > down && (twos & (twos - 1)) == 0 && cavity.model != AirModel::airbox)),
+            "the output rate must be the sample rate times 2^n or 3 * 2^n / 2 or 2^n / 3, up to 32 (1 in the air box)", outputRate());
     require(cavity.model == AirModel::none || cavity.model == AirModel::cavity || cavity.model == AirModel::airbox, "unknown air model",
             (double) cavity.model);
     require(std::isfinite(cavity.shellDepth_m) && cavity.shellDepth_m >= 0.02 && cavity.shellDepth_m <= 1.0,
@@ -142,7 +144,7 @@ void DrumConfig::validate() const
         const MembraneSpec* m = ofBatter ? &batter : &carry;
         const double reserve = kineticReserve(ofBatter);
         require(reserve < 0.5, "the cavity is too stiff for this sample rate (shell too shallow)", reserve);
-        validateMembrane(*m, k, reserve);
+        validateMembrane(*m, k, reserve, designReserve(ofBatter));
     }
     require(snares.count >= 0 && snares.count <= 64, "number of snare wires must be within 0..64", snares.count);
     require(std::isfinite(snares.length_m) && snares.length_m > 0.05, "snare length must be above 0.05 m", snares.length_m);
@@ -251,7 +253,7 @@ SnareSpec DrumConfig::fittedSnares() const
 {
     SnareSpec s = snares;
     const double k = 1.0 / sampleRate_Hz;
-    const double hc = Membrane::gridSpacing(carry, k, kineticReserve(false));
+    const double hc = Membrane::gridSpacing(carry, k, kineticReserve(false), designReserve(false));
     const double allowed = carry.radius_m - 1.5 * hc;
     const double reach = std::hypot(0.5 * s.length_m, 0.5 * (s.count - 1) * s.spacing_m);
     if (reach > allowed && reach > 0.0)
@@ -281,15 +283,26 @@ DrumConfig DrumConfig::lossless() const
     return c;
 }
 
-double DrumConfig::kineticReserve(bool ofBatter) const
+namespace
 {
-    const double k = 1.0 / sampleRate_Hz;
-    const MembraneSpec& head = ofBatter ? batter : carry;
+// A head's share of kinetic energy kept for the explicit couplings at step k.
+double reserveAt(const DrumConfig& c, bool ofBatter, double k)
+{
+    const MembraneSpec& head = ofBatter ? c.batter : c.carry;
     // the two bounds add (the cavity's already doubled for margin, OutsideAir.h's)
-    const double air = cavity.model == AirModel::airbox ? 0.0 : OutsideAir::kineticReserve(outside, batter, carry, k, ofBatter);
-    return Cavity::kineticReserve(cavity, head.radius_m, head.density_kg_per_m2, k) +
-           CavityModes::kineticReserve(cavity, cavityModesUpTo_Hz(), head.radius_m, head.density_kg_per_m2, k) + air +
-           NearFieldAir::kineticReserve(nearFieldSpec(), ofBatter);
+    const double air = c.cavity.model == AirModel::airbox ? 0.0 : OutsideAir::kineticReserve(c.outside, c.batter, c.carry, k, ofBatter);
+    return Cavity::kineticReserve(c.cavity, head.radius_m, head.density_kg_per_m2, k) +
+           CavityModes::kineticReserve(c.cavity, c.cavityModesUpTo_Hz(), head.radius_m, head.density_kg_per_m2, k) + air +
+           NearFieldAir::kineticReserve(c.nearFieldSpec(), ofBatter);
+}
+} // namespace
+
+double DrumConfig::kineticReserve(bool ofBatter) const { return reserveAt(*this, ofBatter, 1.0 / sampleRate_Hz); }
+
+double DrumConfig::designReserve(bool ofBatter) const
+{
+    const double k = 1.0 / sampleRate_Hz, design = (ofBatter ? batter : carry).gridTimeStep_s;
+    return reserveAt(*this, ofBatter, design > 0.0 && design < k ? design : k);
 }
 
 double DrumConfig::cavityModesUpTo_Hz() const
@@ -299,7 +312,11 @@ double DrumConfig::cavityModesUpTo_Hz() const
     return cavity.modesUpTo_Hz;
 }
 
-DrumConfig::DrumConfig() : DrumConfig(mapParameters(ParameterSet {}, 48000.0)) {}
+DrumConfig::DrumConfig() : DrumConfig(mapParameters(ParameterSet {}, 48000.0))
+{
+    sampleRate_Hz = 48000.0; // the same grids at the 48 kHz step, heard at that rate
+    outputRate_Hz = 0.0;
+}
 
 namespace
 {
@@ -308,7 +325,7 @@ DrumConfig mapParametersAt(const ParameterSet& p, double sampleRate_Hz, double c
 {
     DrumConfig c { DrumConfig::Unmapped {} };
     c.cavity.model = static_cast<AirModel>(std::lround(p.get(ParamId::airModel))); // none, cavity, airbox: the choices in order
-    c.sampleRate_Hz = c.cavity.model == AirModel::airbox ? sampleRate_Hz : physicsRateFor(sampleRate_Hz);
+    c.sampleRate_Hz = c.cavity.model == AirModel::airbox ? sampleRate_Hz : simulatedRateFor(sampleRate_Hz, coarseness).rate_Hz;
     c.outputRate_Hz = c.sampleRate_Hz == sampleRate_Hz ? 0.0 : sampleRate_Hz; // 0: the same
     // Damping sets the T60 of the heads' lowest modes (dampingT60); sigma0 = 3 ln(10) / T60
     // (the amplitude falls by 60 dB in T60).
@@ -396,7 +413,8 @@ double qualityBandwidth_Hz(double coarseness) noexcept
 {
     if (! (coarseness >= 1.0))
         return std::isnan(coarseness) ? coarseness : qualityBandwidth_Hz(1.0);
-    const DrumConfig c = mapParametersAt(ParameterSet {}, 1.0 / kGridDesignStep_s, coarseness);
+    DrumConfig c = mapParametersAt(ParameterSet {}, 1.0 / kGridDesignStep_s, coarseness);
+    c.sampleRate_Hz = 1.0 / kGridDesignStep_s; // the grids as designed, whatever rate simulates them
     const double k = kGridDesignStep_s;
     auto top = [&](double sine) { return std::asin(std::min(1.0, sine)) / (std::numbers::pi * k); };
     auto head = [&](const MembraneSpec& m, bool batter) {

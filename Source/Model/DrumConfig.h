@@ -24,7 +24,9 @@ namespace snaresim
 
 struct DrumConfig
 {
-    // The schema's default drum at 48 kHz: mapParameters(ParameterSet {}, 48000).
+    // The schema's default drum simulated at 48 kHz and heard at that rate: the grids of
+    // mapParameters(ParameterSet {}, 48000), which simulates them at 32 kHz. The physics' tests
+    // and the lab start from it.
     DrumConfig();
     // The constants alone, every field a parameter sets at 0: what mapParameters fills in.
     struct Unmapped
@@ -32,11 +34,20 @@ struct DrumConfig
     explicit DrumConfig(Unmapped) {}
 
     double sampleRate_Hz = 48000.0; // the simulation's rate: the time step k = 1 / rate
-    // The host's rate, a power-of-two multiple of sampleRate_Hz (HostRateInterpolator.h);
+    // The host's rate, sampleRate_Hz times L / M (simulatedRateFor, HostRateInterpolator.h);
     // 0: the same.
     double outputRate_Hz = 0.0;
     double outputRate() const { return outputRate_Hz > 0.0 ? outputRate_Hz : sampleRate_Hz; }
-    int outputFactor() const { return (int) std::lround(outputRate() / sampleRate_Hz); }
+    // L / M, the host's rate over the simulated one in lowest terms (M 1, 2 or 3)
+    int outputDown() const
+    {
+        const double r = outputRate() / sampleRate_Hz;
+        for (int m = 1; m < 3; ++m)
+            if (std::abs(r * m - std::round(r * m)) <= 1e-9 * r * m)
+                return m;
+        return 3;
+    }
+    int outputUp() const { return (int) std::lround(outputRate() / sampleRate_Hz * outputDown()); }
     MembraneSpec batter;
     MembraneSpec carry { .radius_m = 0.1778, .density_kg_per_m2 = 0.106 }; // 3 mil PET
     SnareSpec snares;
@@ -57,6 +68,10 @@ struct DrumConfig
     // Share of a head's kinetic energy kept in its grid for the explicit couplings (the cavity,
     // the outside air): Membrane's kineticReserve.
     double kineticReserve(bool ofBatter) const;
+    // That share at the step the heads' grids are designed for (MembraneSpec::gridTimeStep_s,
+    // where it is shorter than the simulated step; else the simulated step), so that a drum
+    // simulated at a lower rate keeps the design step's grid (Membrane::gridSpacing).
+    double designReserve(bool ofBatter) const;
     // The cavity's modes up to this frequency (CavityModes.h): CavitySpec::modesUpTo_Hz with the
     // reduced cavity, none in the air box or without air.
     double cavityModesUpTo_Hz() const;
@@ -83,8 +98,8 @@ struct DrumConfig
 
 // Map the user-facing parameters onto the physical description, validated (throws
 // std::invalid_argument when the model cannot run at this sample rate and quality). The drum
-// is simulated at physicsRateFor(sampleRate_Hz) and heard at sampleRate_Hz (outputRate_Hz),
-// but in the air box, which is simulated at the host's rate.
+// is simulated at simulatedRateFor(sampleRate_Hz, the grids' coarseness) and heard at
+// sampleRate_Hz (outputRate_Hz), but in the air box, which is simulated at the host's rate.
 DrumConfig makeDrumConfig(const ParameterSet& params, double sampleRate_Hz);
 
 // The same mapping without validation and without allocating: for the audio thread, where

@@ -27,7 +27,7 @@ struct DrumSnapshot
 
     bool snaresEngaged = true;
     float peakDisplacement = 0.0f; // largest |w| over both heads (m), for colour scaling
-    long long samplesRendered = 0;
+    long long samplesRendered = 0; // host samples since the drum was built or reset
 };
 
 } // namespace snaresim

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <numeric>
 
 namespace snaresim
 {
@@ -26,26 +27,42 @@ double besselI0(double x)
 }
 } // namespace
 
-double physicsRateFor(double hostRate_Hz) noexcept
+SimulatedRate simulatedRateFor(double hostRate_Hz, double gridCoarseness) noexcept
 {
-    double rate = hostRate_Hz;
-    while (rate * 0.5 >= 44100.0)
-        rate *= 0.5;
-    return rate;
+    SimulatedRate s { hostRate_Hz };
+    while (s.rate_Hz * 0.5 >= 44100.0)
+    {
+        s.rate_Hz *= 0.5;
+        s.up *= 2;
+    }
+    if (s.rate_Hz >= 44100.0 && s.rate_Hz <= 48000.0 && gridCoarseness >= kReducedRateCoarseness)
+    {
+        // two thirds, or three quarters where two thirds would fall below kReducedRate_Hz
+        const int keep = s.rate_Hz * 2.0 / 3.0 >= kReducedRate_Hz ? 2 : 3;
+        s.rate_Hz = s.rate_Hz * keep / (keep + 1); // exact for 44.1 and 48 kHz
+        s.up *= keep + 1;
+        s.down *= keep;
+        const int common = std::gcd(s.up, s.down);
+        s.up /= common;
+        s.down /= common;
+    }
+    return s;
 }
 
-HostRateInterpolator::HostRateInterpolator(int factor) : L(std::max(1, factor))
+HostRateInterpolator::HostRateInterpolator(int up, int down) : L(std::max(1, up)), M(std::clamp(down, 1, L))
 {
     if (L > 1)
     {
-        // Kaiser's estimate of the length for the transition (in cycles per host sample) and
-        // the attenuation; odd, so that the delay is whole.
+        // Kaiser's estimate of the length for the transition (in cycles per sample at L times
+        // the simulated rate) and the attenuation; odd, so that the delay is whole.
         const double transition = (kStopEdge - kPassEdge) / L;
         const double beta = 0.1102 * (kStop_dB - 8.7);
         const int estimate = (int) std::ceil((kStop_dB - 8.0) / (2.285 * 2.0 * std::numbers::pi * transition)) + 1;
         perPhase = (estimate + 1 + L - 1) / L;
         taps = perPhase * L - 1;
-        const double cutoff = 0.5 * (kPassEdge + kStopEdge) / L; // cycles per host sample
+        if (taps % 2 == 0)
+            --taps;
+        const double cutoff = 0.5 * (kPassEdge + kStopEdge) / L; // cycles per sample at L times the rate
         const double centre = 0.5 * (taps - 1);
         std::vector<double> prototype((size_t) taps);
         for (int i = 0; i < taps; ++i)

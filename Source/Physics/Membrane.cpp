@@ -9,19 +9,20 @@
 namespace snaresim
 {
 
-double Membrane::gridSpacing(const MembraneSpec& s, double k, double reserve)
+double Membrane::gridSpacing(const MembraneSpec& s, double k, double reserve, double designReserve)
 {
     const double T = s.gridTension_N_per_m > 0.0 ? s.gridTension_N_per_m : s.tension_N_per_m;
     const double sigma1 = s.gridSigma1_m2_per_s >= 0.0 ? s.gridSigma1_m2_per_s : s.sigma1_m2_per_s;
     // eq. (39): h^2 >= 2 k^2 T / rho + 8 sigma1 k
     return designedSpacing(s.gridCoarseness, k, s.gridTimeStep_s, [&](double step) {
-        return std::sqrt((2.0 * step * step * T / s.density_kg_per_m2 + 8.0 * sigma1 * step) / (1.0 - reserve));
+        const double r = step != k && designReserve >= 0.0 ? designReserve : reserve;
+        return std::sqrt((2.0 * step * step * T / s.density_kg_per_m2 + 8.0 * sigma1 * step) / (1.0 - r));
     });
 }
 
-Membrane::Membrane(const MembraneSpec& s, double timeStep, double reserve)
-    : g(s.radius_m, gridSpacing(s, timeStep, reserve)), k(timeStep), kk(timeStep * timeStep), h(g.spacing()), rho(s.density_kg_per_m2),
-      maxT(s.gridTension_N_per_m > 0.0 ? s.gridTension_N_per_m : s.tension_N_per_m),
+Membrane::Membrane(const MembraneSpec& s, double timeStep, double reserve, double designReserve)
+    : g(s.radius_m, gridSpacing(s, timeStep, reserve, designReserve)), k(timeStep), kk(timeStep * timeStep), h(g.spacing()),
+      rho(s.density_kg_per_m2), maxT(s.gridTension_N_per_m > 0.0 ? s.gridTension_N_per_m : s.tension_N_per_m),
       maxSigma1(s.gridSigma1_m2_per_s >= 0.0 ? s.gridSigma1_m2_per_s : s.sigma1_m2_per_s)
 {
     const int n = g.width();
@@ -208,10 +209,9 @@ void Membrane::blockAccelerationsIn(int side, int ix0, int iy0, int columns, int
     const int count = ((columns + side - 1) / side) * ((rows + side - 1) / side);
     if (single)
         SNARESIM_ON_VECTOR_TARGET(blockSecondDifferences<float>)
-        (fNext.data(), fNow.data(), fPrev.data(), n, ix0, iy0, columns, rows, side, accScratch.data(), out);
-    else
-        SNARESIM_ON_VECTOR_TARGET(blockSecondDifferences<double>)
-        (wNext.data(), wNow.data(), wPrev.data(), n, ix0, iy0, columns, rows, side, accScratch.data(), out);
+    (fNext.data(), fNow.data(), fPrev.data(), n, ix0, iy0, columns, rows, side, accScratch.data(), out);
+    else SNARESIM_ON_VECTOR_TARGET(blockSecondDifferences<double>)(wNext.data(), wNow.data(), wPrev.data(), n, ix0, iy0, columns, rows,
+                                                                   side, accScratch.data(), out);
     for (int b = 0; b < count; ++b)
         out[b] *= h * h;
 }

@@ -21,12 +21,15 @@ namespace snaresim
 class Membrane
 {
 public:
-    // kineticReserve: share of the kinetic energy kept for an explicit coupling (the cavity).
-    Membrane(const MembraneSpec& spec, double timeStep_s, double kineticReserve = 0.0);
+    // kineticReserve: share of the kinetic energy kept for an explicit coupling (the cavity) at
+    // this step; designReserve: that share at the grid's design step (MembraneSpec::
+    // gridTimeStep_s), negative: the same.
+    Membrane(const MembraneSpec& spec, double timeStep_s, double kineticReserve = 0.0, double designReserve = -1.0);
 
     // Grid spacing from the stability bound eq. (39), for the design tension and sigma1,
-    // widened by 1/sqrt(1 - kineticReserve), times the coarseness factor.
-    static double gridSpacing(const MembraneSpec& spec, double timeStep_s, double kineticReserve = 0.0);
+    // widened by 1/sqrt(1 - kineticReserve), times the coarseness factor: the bound at the
+    // design step with its reserve, or at this step where that is wider (GridDesign.h).
+    static double gridSpacing(const MembraneSpec& spec, double timeStep_s, double kineticReserve = 0.0, double designReserve = -1.0);
 
     const CircularGrid& grid() const { return g; }
     double density() const { return rho; }

@@ -139,6 +139,7 @@ RenderStats benchmarkDrum(const ParameterSet& params, const BuildOptions& option
             stats.strikes = (int) nextStrike;
             stats.solver = drum.solverStats();
             stats.nonfiniteResets = player.nonFiniteResets();
+            figures.simulationRate_Hz = drum.simulationRate();
             figures.batterGridSpacing_m = drum.batter().grid().spacing();
             figures.carryGridSpacing_m = drum.carry().grid().spacing();
             figures.batterNodes = drum.batter().grid().numInterior();

@@ -715,12 +715,14 @@ Output:
                         channel each in order (pressure, 0.005 per Pa)
   --seconds S           length in seconds, 0 < S <= 3600 (default: 2; with --midi, the
                         latest strike + 2). Strikes at or after the end are not played.
-  --sample-rate HZ      whole number of Hz, 8000..384000 (default 48000). From 88200 Hz
-                        the drum is simulated at the rate halved while it stays at 44.1
-                        kHz or above and interpolated to it (1.34 ms later at 96 and 192
-                        kHz); the air box at the rate itself
-  --energy-csv FILE     also write the energy ledger, one row per sample (from 88.2 kHz
-                        a simulated step's ledger on each of its samples):
+  --sample-rate HZ      whole number of Hz, 8000..384000 (default 48000). From 44100 Hz
+                        the default's grids (bandwidth to 8.1 kHz) are simulated at 32 or
+                        33.075 kHz and resampled to the rate (about 2 ms later); finer
+                        grids from 88200 Hz at the rate halved while it stays at 44.1 kHz
+                        or above (1.34 ms later at 96 and 192 kHz); the air box at the
+                        rate itself
+  --energy-csv FILE     also write the energy ledger, one row per sample (where the drum
+                        is simulated at a lower rate, the last simulated step's ledger):
                         time_s, one column per term of the ledger (batter_J, carry_J,
                         mallets_J, snares_J, cavity_J, airbox_J), total_J, dissipated_J,
                         injected_J, balance_J (total = the terms' sum; balance = total
@@ -783,8 +785,9 @@ Benchmark:
                         and --mic other than mix are refused. The summary / JSON adds
                         realtime_factor (audio s / wall s), mean_block_ms, worst_block_ms,
                         block_budget_ms (one block's duration), worst_block_share (worst /
-                        budget), block_size, blocks, the grid (batter_grid_spacing_m,
-                        carry_grid_spacing_m, snare_points),
+                        budget), block_size, blocks, simulation_rate (the physics' rate,
+                        Hz), the grid (batter_grid_spacing_m, carry_grid_spacing_m,
+                        snare_points),
                         compute_seconds_per_audio_second and peak_resident_mb. With
                         --model airbox the drum is built with the air options (--threads,
                         --box, ...), and afterwards the air update is timed against a

@@ -39,6 +39,7 @@ struct BenchFigures
     double slowestRun_s = 0.0;        // the slowest run's total block time
     double fastestRun_s = 0.0;        // the fastest run's total block time
     double blockBudget_s = 0.0;       // blockSize / sample rate
+    double simulationRate_Hz = 0.0;   // Drum::simulationRate(): the physics' rate
     double batterGridSpacing_m = 0.0; // Drum::batter().grid().spacing()
     double carryGridSpacing_m = 0.0;
     int batterNodes = 0; // interior nodes of the batter / carry grids

@@ -134,6 +134,7 @@ std::string formatJson(const RenderReport& r)
         object->setProperty("realtime_factor_slowest_run", b->slowestRun_s > 0.0 ? secondsRendered(r) / b->slowestRun_s : 0.0);
         object->setProperty("block_budget_ms", 1000.0 * b->blockBudget_s);
         object->setProperty("worst_block_share", b->worstBlock_s / b->blockBudget_s);
+        object->setProperty("simulation_rate", b->simulationRate_Hz);
         object->setProperty("batter_grid_spacing_m", b->batterGridSpacing_m);
         object->setProperty("carry_grid_spacing_m", b->carryGridSpacing_m);
         object->setProperty("batter_nodes", b->batterNodes);
@@ -182,8 +183,9 @@ std::string benchSummary(const RenderReport& r, const BenchFigures& b)
     if (b.repeats > 1)
         s += formatted("raw: slowest block of any run %.4g ms; slowest run %.3gx real time\n", 1000.0 * b.worstBlockRaw_s,
                        b.slowestRun_s > 0.0 ? secondsRendered(r) / b.slowestRun_s : 0.0);
-    s += formatted("grid: batter h %.4g mm (%d nodes), carry h %.4g mm (%d nodes), %d snare points\n", 1000.0 * b.batterGridSpacing_m,
-                   b.batterNodes, 1000.0 * b.carryGridSpacing_m, b.carryNodes, b.snarePoints);
+    s += formatted("grid: batter h %.4g mm (%d nodes), carry h %.4g mm (%d nodes), %d snare points; simulated at %.6g Hz\n",
+                   1000.0 * b.batterGridSpacing_m, b.batterNodes, 1000.0 * b.carryGridSpacing_m, b.carryNodes, b.snarePoints,
+                   b.simulationRate_Hz);
     if (const auto& a = b.air)
     {
         s += formatted("air box: %lld points, h %.4g mm, %.3g s of compute per s of audio (the whole drum, %d thread%s)\n",

@@ -124,11 +124,18 @@ TEST_CASE("presets are found by name and apply their values", "[parameters]")
     }
 }
 
-TEST_CASE("DrumConfig{} is the schema's default drum", "[parameters]")
+TEST_CASE("DrumConfig{} is the schema's default drum simulated at 48 kHz", "[parameters]")
 {
-    // Built both ways, the two drums play the same strike sample for sample.
+    // Built both ways, the two drums play the same strike sample for sample: the schema's
+    // default at 48 kHz is simulated at 32 kHz (HostRateInterpolator.h); the same config at a
+    // 48 kHz step is DrumConfig{}.
+    DrumConfig atFull = makeDrumConfig(ParameterSet {}, 48000.0);
+    CHECK(atFull.sampleRate_Hz == 32000.0);
+    CHECK(atFull.outputRate() == 48000.0);
+    atFull.sampleRate_Hz = 48000.0;
+    atFull.outputRate_Hz = 0.0;
     Drum a { DrumConfig {} };
-    Drum b { makeDrumConfig(ParameterSet {}, 48000.0) };
+    Drum b { atFull };
     a.strikeAtDefaultPoint(3.0);
     b.strikeAtDefaultPoint(3.0);
     int differing = 0;

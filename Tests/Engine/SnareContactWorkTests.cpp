@@ -70,6 +70,7 @@ TEST_CASE("snare contact: solving where the points touch gives every point's sol
                      << "; steps differing from every point's solve " << differing);
     CHECK(differing == 0);
     CHECK(overBound == 0);
-    CHECK(touchingSteps > steps / 2); // the wires do touch and leave the head through the roll
-    CHECK(meanShare < 0.5);           // and most of the time most points are out of reach
+    CHECK(touchingSteps > steps / 4); // the wires do touch and leave the head through the roll
+    CHECK(touchingSteps < steps);
+    CHECK(meanShare < 0.5); // and most of the time most points are out of reach
 }

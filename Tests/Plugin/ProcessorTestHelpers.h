@@ -138,11 +138,15 @@ struct EngineNote
     int sample, key, velocity;
 };
 
+// silentBefore: host samples of silence the drum plays first (a drum at rest that has played
+// them stands at that phase of its simulated steps: HostRateInterpolator.h)
 inline std::vector<float> engineRender(const snaresim::ParameterSet& params, double sampleRate, int numSamples,
-                                       std::vector<EngineNote> notes)
+                                       std::vector<EngineNote> notes, long silentBefore = 0)
 {
     const juce::ScopedNoDenormals noDenormals;
     snaresim::Drum drum(snaresim::makeDrumConfig(params, sampleRate));
+    for (long n = 0; n < silentBefore; ++n)
+        drum.step();
     std::stable_sort(notes.begin(), notes.end(), [](const EngineNote& a, const EngineNote& b) { return a.sample < b.sample; });
     std::vector<float> out;
     size_t next = 0;
