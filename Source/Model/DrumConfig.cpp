@@ -2,6 +2,7 @@
 
 #include "Cavity.h"
 #include "CavityModes.h"
+#include "GridDesign.h"
 #include "HostRateInterpolator.h"
 #include "Membrane.h"
 #include "NearFieldAir.h"
@@ -301,8 +302,7 @@ double DrumConfig::kineticReserve(bool ofBatter) const { return reserveAt(*this,
 
 double DrumConfig::designReserve(bool ofBatter) const
 {
-    const double k = 1.0 / sampleRate_Hz, design = (ofBatter ? batter : carry).gridTimeStep_s;
-    return reserveAt(*this, ofBatter, design > 0.0 && design < k ? design : k);
+    return reserveAt(*this, ofBatter, designStep(1.0 / sampleRate_Hz, (ofBatter ? batter : carry).gridTimeStep_s));
 }
 
 double DrumConfig::cavityModesUpTo_Hz() const

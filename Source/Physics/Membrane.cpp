@@ -208,10 +208,15 @@ void Membrane::blockAccelerationsIn(int side, int ix0, int iy0, int columns, int
     const int n = g.width();
     const int count = ((columns + side - 1) / side) * ((rows + side - 1) / side);
     if (single)
-        SNARESIM_ON_VECTOR_TARGET(blockSecondDifferences<float>)
-    (fNext.data(), fNow.data(), fPrev.data(), n, ix0, iy0, columns, rows, side, accScratch.data(), out);
-    else SNARESIM_ON_VECTOR_TARGET(blockSecondDifferences<double>)(wNext.data(), wNow.data(), wPrev.data(), n, ix0, iy0, columns, rows,
-                                                                   side, accScratch.data(), out);
+    {
+        const auto kernel = SNARESIM_ON_VECTOR_TARGET(blockSecondDifferences<float>);
+        kernel(fNext.data(), fNow.data(), fPrev.data(), n, ix0, iy0, columns, rows, side, accScratch.data(), out);
+    }
+    else
+    {
+        const auto kernel = SNARESIM_ON_VECTOR_TARGET(blockSecondDifferences<double>);
+        kernel(wNext.data(), wNow.data(), wPrev.data(), n, ix0, iy0, columns, rows, side, accScratch.data(), out);
+    }
     for (int b = 0; b < count; ++b)
         out[b] *= h * h;
 }
