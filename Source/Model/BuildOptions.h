@@ -1,7 +1,8 @@
 #pragma once
 // What a drum is built with besides its parameters: the settings an offline client (the
 // renderer) gives that are not the instrument's, such as the air box's size, walls and
-// microphones, its threads, a lossless drum for energy checks. The plug-in builds with none.
+// microphones, its threads, a lossless drum for energy checks; and the real-time clients' one
+// latency.
 
 #include "DrumConfig.h"
 #include "Parameters.h"
@@ -24,6 +25,9 @@ struct BuildOptions
 
     bool lossless = false;    // every loss off (DrumConfig::lossless): the energy is conserved
     bool trackEnergy = false; // the drum keeps its energy ledger every step (Drum::setEnergyTracking)
+    // Every drum's output lags its strikes by the longest lag at its rate
+    // (longestLatencySamples): one latency whatever Quality or air model plays (the plug-in's).
+    bool constantLatency = false;
 
     // The options over a mapped config: the air box's settings, then lossless.
     void applyTo(DrumConfig& config) const noexcept;

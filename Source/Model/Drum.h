@@ -83,6 +83,10 @@ public:
     double sampleRate() const { return cfg.outputRate(); }
     // the rate the physics is simulated at (config().sampleRate_Hz; HostRateInterpolator.h)
     double simulationRate() const { return cfg.sampleRate_Hz; }
+    // What the signals at the host's rate lag the simulation by, in host samples: the
+    // interpolator's delay (96 at 48 kHz and 85.7 at 44.1 kHz for grids simulated at 32 and
+    // 33.075 kHz; 0 where the drum is simulated at the host's rate).
+    double latencySamples() const { return (double) toHost.delay() / (double) toHost.down(); }
 
     // Start a strike with the next free mallet (round robin): speed in m/s (> 0, downward),
     // position as fractions of the radius. Real-time safe.

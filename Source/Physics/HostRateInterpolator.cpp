@@ -49,19 +49,32 @@ SimulatedRate simulatedRateFor(double hostRate_Hz, double gridCoarseness) noexce
     return s;
 }
 
+int HostRateInterpolator::perPhaseFor(int up) noexcept
+{
+    if (up <= 1)
+        return 1;
+    // Kaiser's estimate of the length for the transition (in cycles per sample at L times the
+    // simulated rate) and the attenuation.
+    const double transition = (kStopEdge - kPassEdge) / up;
+    const int estimate = (int) std::ceil((kStop_dB - 8.0) / (2.285 * 2.0 * std::numbers::pi * transition)) + 1;
+    return (estimate + 1 + up - 1) / up;
+}
+
+int HostRateInterpolator::tapsFor(int up) noexcept
+{
+    if (up <= 1)
+        return 1;
+    const int t = perPhaseFor(up) * up - 1;
+    return t % 2 == 0 ? t - 1 : t; // odd, so that the delay is whole
+}
+
 HostRateInterpolator::HostRateInterpolator(int up, int down) : L(std::max(1, up)), M(std::clamp(down, 1, L))
 {
     if (L > 1)
     {
-        // Kaiser's estimate of the length for the transition (in cycles per sample at L times
-        // the simulated rate) and the attenuation; odd, so that the delay is whole.
-        const double transition = (kStopEdge - kPassEdge) / L;
         const double beta = 0.1102 * (kStop_dB - 8.7);
-        const int estimate = (int) std::ceil((kStop_dB - 8.0) / (2.285 * 2.0 * std::numbers::pi * transition)) + 1;
-        perPhase = (estimate + 1 + L - 1) / L;
-        taps = perPhase * L - 1;
-        if (taps % 2 == 0)
-            --taps;
+        perPhase = perPhaseFor(L);
+        taps = tapsFor(L);
         const double cutoff = 0.5 * (kPassEdge + kStopEdge) / L; // cycles per sample at L times the rate
         const double centre = 0.5 * (taps - 1);
         std::vector<double> prototype((size_t) taps);
@@ -115,6 +128,17 @@ void HostRateInterpolator::clear() noexcept
 {
     std::fill(ring.begin(), ring.end(), 0.0);
     pos = 0;
+}
+
+double longestLatencySamples(double hostRate_Hz) noexcept
+{
+    double longest = 0.0;
+    for (const double coarseness : { 1.0, kReducedRateCoarseness })
+    {
+        const auto r = simulatedRateFor(hostRate_Hz, coarseness);
+        longest = std::max(longest, (double) HostRateInterpolator::delayFor(r.up) / (double) r.down);
+    }
+    return longest;
 }
 
 } // namespace snaresim

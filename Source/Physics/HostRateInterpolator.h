@@ -26,8 +26,10 @@ public:
     int factor() const { return L; }
     int down() const { return M; }
     // the filter's delay in samples at L times the simulated rate (0 for L = 1)
-    int delay() const { return L > 1 ? (taps - 1) / 2 : 0; }
+    int delay() const { return delayFor(L); }
     int length() const { return taps; }
+    // the same for an interpolation by `up`, without building it
+    static int delayFor(int up) noexcept { return (tapsFor(up) - 1) / 2; }
 
     // a new simulated sample of each channel (before the phase at which it is due: below M)
     void push(const std::array<double, numChannels>& x) noexcept;
@@ -37,6 +39,9 @@ public:
     void clear() noexcept;
 
 private:
+    static int perPhaseFor(int up) noexcept;
+    static int tapsFor(int up) noexcept;
+
     int L, M;
     int perPhase = 1;         // taps of each phase (M)
     int taps = 1;             // M L - 1, odd: a whole delay
@@ -65,5 +70,11 @@ constexpr double kReducedRate_Hz = 32000.0;
 // 32 kHz (48 kHz: 32; 44.1 kHz: 33.075). That band (flat to 14.4 and 14.9 kHz) holds the grids'
 // band and the contacts' overtones above it (docs/MODEL.md, "The host's rate").
 SimulatedRate simulatedRateFor(double hostRate_Hz, double gridCoarseness) noexcept;
+
+// The longest lag of the signals behind the simulation at this host rate over every grid's
+// simulated rate (HostRateInterpolator::delay in host samples): 96 at 48 kHz, 85.7 at 44.1,
+// 192 at 96 (the default's grids), 0 where every grid is simulated at the host's rate. A
+// client that keeps one latency whatever drum plays pads every drum to it.
+double longestLatencySamples(double hostRate_Hz) noexcept;
 
 } // namespace snaresim

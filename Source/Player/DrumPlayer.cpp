@@ -132,6 +132,7 @@ void DrumPlayer::start(Preparation& p) noexcept
 
     rate = current != nullptr ? current->sampleRate() : 0.0;
     fellBackNow.store(current != nullptr && current->fellBack, std::memory_order_relaxed);
+    publishLatency();
     fadeLength = std::max(1, (int) std::lround(crossfadeSeconds * rate));
     fadePosition = 0;
     quietSamples = 1 << 30; // the drum starts quiet (new or reset below)
@@ -149,8 +150,8 @@ void DrumPlayer::start(Preparation& p) noexcept
     liveDirty = true;
 
     // Playback starts from a quiet drum (a kept one may still ring from before).
-    if (p.keepCurrent && current != nullptr && current->drum != nullptr)
-        current->drum->reset();
+    if (p.keepCurrent && current != nullptr)
+        current->silence();
 
     builder.setTargetLocked(rate, current != nullptr ? current->requested : p.key);
 }
@@ -158,8 +159,8 @@ void DrumPlayer::start(Preparation& p) noexcept
 void DrumPlayer::releaseResources() noexcept
 {
     for (auto* m : { current, fading })
-        if (m != nullptr && m->drum != nullptr)
-            m->drum->reset();
+        if (m != nullptr)
+            m->silence();
 }
 
 //==============================================================================
@@ -226,7 +227,13 @@ void DrumPlayer::installPendingModel() noexcept
     current = next;
     modelSwaps.fetch_add(1, std::memory_order_relaxed);
     fellBackNow.store(next->fellBack, std::memory_order_relaxed);
+    publishLatency();
     liveDirty = true; // the new drum takes the live values (and the snares state) at once
+}
+
+void DrumPlayer::publishLatency() noexcept
+{
+    latencyNow.store(current != nullptr ? current->latencySamples() : 0, std::memory_order_relaxed);
 }
 
 //==============================================================================
@@ -321,8 +328,8 @@ void DrumPlayer::applyEvent(const PlayerEvent& event) noexcept
 
         case PlayerEvent::Type::allSoundOff:
             for (auto* m : { current, fading })
-                if (m != nullptr && m->drum != nullptr)
-                    m->drum->reset();
+                if (m != nullptr)
+                    m->silence();
             break;
 
         case PlayerEvent::Type::parameter:
@@ -354,14 +361,15 @@ bool DrumPlayer::renderModel(DrumModel& model, float* out, int numSamples, StepO
     for (int i = 0; i < numSamples; ++i)
         finite = finite && std::isfinite(out[i]);
 
-    if (finite)
-        return true;
-
-    // The simulation blew up: reset it quietly and output silence for this chunk.
-    d.reset();
-    std::fill(out, out + numSamples, 0.0f);
-    resetsNow.fetch_add(1, std::memory_order_relaxed);
-    return false;
+    if (! finite)
+    {
+        // The simulation blew up: reset it quietly and output silence for this chunk.
+        d.reset();
+        std::fill(out, out + numSamples, 0.0f);
+        resetsNow.fetch_add(1, std::memory_order_relaxed);
+    }
+    model.pad.process(out, numSamples);
+    return finite;
 }
 
 void DrumPlayer::renderSubBlock(float* out, int numSamples, StepObserver* observer) noexcept
@@ -401,7 +409,7 @@ void DrumPlayer::renderSubBlock(float* out, int numSamples, StepObserver* observ
         samplesSinceFiniteCheck = 0;
         if (current != nullptr && current->drum != nullptr && ! current->drum->isFinite())
         {
-            current->drum->reset();
+            current->silence();
             resetsNow.fetch_add(1, std::memory_order_relaxed);
             std::fill(out, out + numSamples, 0.0f);
         }

@@ -139,6 +139,10 @@ public:
     int maxNewtonIterations() const noexcept { return iterationsNow.load(std::memory_order_relaxed); }
     bool usedFallbackParameters() const noexcept { return fellBackNow.load(std::memory_order_relaxed); }
     int modelSwapCount() const noexcept { return modelSwaps.load(std::memory_order_relaxed); }
+    // The output's lag behind a strike in whole host samples: the drum playing now's
+    // (Drum::latencySamples, rounded) and its pad's (DrumModel::latencySamples; 0 without a
+    // drum). With BuildOptions::constantLatency the same for every drum at the rate.
+    int latencySamples() const noexcept { return latencyNow.load(std::memory_order_relaxed); }
 
     // One reader thread: the newest snapshot published (about 30 per second of audio) into
     // `out`; false when nothing new was published since the last call.
@@ -160,6 +164,7 @@ private:
     void renderRange(float* out, int numSamples, StepObserver* observer) noexcept;
     void renderSubBlock(float* out, int numSamples, StepObserver* observer) noexcept;
     void publishStats() noexcept;
+    void publishLatency() noexcept;
     void updateCpuLoad(double elapsedSeconds, int numSamples) noexcept;
 
     // A value that moves to its target linearly over a fixed number of samples.
@@ -206,6 +211,7 @@ private:
     std::atomic<int> iterationsNow { 0 };
     std::atomic<bool> fellBackNow { false };
     std::atomic<int> modelSwaps { 0 };
+    std::atomic<int> latencyNow { 0 };
 };
 
 } // namespace snaresim

@@ -33,8 +33,18 @@ std::string timesRealTime(double load, int decimals)
 }
 } // namespace
 
+namespace
+{
+// Live and bouncing, every drum lags by the longest at the rate; a render takes each drum's own.
+BuildOptions withLatency(BuildOptions options, DrumSession::Mode mode)
+{
+    options.constantLatency = mode != DrumSession::Mode::render;
+    return options;
+}
+} // namespace
+
 DrumSession::DrumSession(Mode mode, BuildOptions options)
-    : currentMode(mode), modeInBlocks(mode), player([this] { return playedParameters(); }, options)
+    : currentMode(mode), modeInBlocks(mode), player([this] { return playedParameters(); }, withLatency(options, mode))
 {
     setParameters(ParameterSet {});
 }

@@ -11,7 +11,10 @@
 //    size (KeepUp.h), the cavity meanwhile or otherwise; live with "Lower Quality when slow" on,
 //    a bandwidth measured too slow gives way to the first lower rung that is not;
 //  - the player (DrumPlayer.h): smoothing, events, rebuilds built off the audio thread (at once,
-//    on the calling thread, in a render), the hand-off, the guard and the counters.
+//    on the calling thread, in a render), the hand-off, the guard and the counters;
+//  - the latency: live and bouncing, every drum lags its strikes by the longest lag at the rate
+//    (BuildOptions::constantLatency: 96 samples at 48 kHz), whatever Quality or air model
+//    plays; a render takes each drum's own lag (the renderer takes it off).
 // Drums are built in one place, buildDrum (ModelExchange.h), with the session's BuildOptions.
 //
 // Threads: process() and setParameter() may run on the audio thread and never lock, allocate,
@@ -68,6 +71,8 @@ public:
     // std::invalid_argument when the drum cannot be built (no fallback).
     void prepareAndStart(double sampleRate, int blockSize);
     void releaseResources() noexcept { player.releaseResources(); }
+    // The output's lag behind a strike in samples of the prepared rate (after start()).
+    int latencySamples() const noexcept { return player.latencySamples(); }
     // After a state or program load: the drum the parameters need now is built at once.
     void buildNowIfNeeded() { player.buildNowIfNeeded(); }
     // Stops the background threads (the builder and the keep-up checks).

@@ -42,11 +42,18 @@ std::unique_ptr<DrumModel> buildModel(const ParameterSet& params, double sampleR
         return model;
     }
 
+    // the pad that brings this drum's lag to the longest at this rate
+    auto padded = [&](std::unique_ptr<DrumModel> m) {
+        if (options.constantLatency && m->drum != nullptr)
+            m->pad.resize((int) std::lround(longestLatencySamples(sampleRate)) - (int) std::lround(m->drum->latencySamples()));
+        return m;
+    };
+
     try
     {
         model->drum = buildDrum(params, sampleRate, options);
         model->built = params;
-        return model;
+        return padded(std::move(model));
     }
     catch (const std::bad_alloc&)
     {
@@ -77,7 +84,7 @@ std::unique_ptr<DrumModel> buildModel(const ParameterSet& params, double sampleR
         model->drum.reset();
     }
 
-    return model;
+    return padded(std::move(model));
 }
 
 //==============================================================================

@@ -9,10 +9,12 @@
 
 #include "BuildOptions.h"
 #include "Drum.h"
+#include "LatencyPad.h"
 #include "Parameters.h"
 
 #include <array>
 #include <atomic>
+#include <cmath>
 #include <condition_variable>
 #include <cstddef>
 #include <functional>
@@ -39,8 +41,18 @@ struct DrumModel
     ParameterSet built;         // the values the drum was built from
     GridKey requested;          // what was asked for (differs from `built` after a fallback)
     bool fellBack = false;      // the requested values failed; built from the defaults
+    LatencyPad pad;             // after the drum's output (BuildOptions::constantLatency)
 
     double sampleRate() const noexcept { return requested.sampleRate; }
+    // the drum's and the pad's lag behind a strike, in host samples (0 without a drum)
+    int latencySamples() const noexcept { return drum != nullptr ? (int) std::lround(drum->latencySamples()) + pad.length() : 0; }
+    // the drum silenced and its pad emptied (real-time safe)
+    void silence() noexcept
+    {
+        if (drum != nullptr)
+            drum->reset();
+        pad.clear();
+    }
 };
 
 // The one place a Drum is built for a client: the parameters mapped at this rate

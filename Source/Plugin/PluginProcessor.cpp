@@ -85,9 +85,13 @@ void SnareSimAudioProcessor::prepareToPlay(double sampleRate, int maximumExpecte
     pushParameters();
     auto preparation = session.prepare(sampleRate, maximumExpectedSamplesPerBlock);
 
-    const juce::ScopedLock sl(getCallbackLock());
-    session.start(preparation);
-    // The models it replaced are freed with `preparation`, outside the lock.
+    {
+        const juce::ScopedLock sl(getCallbackLock());
+        session.start(preparation);
+    }
+    // The models it replaced are freed with `preparation`, outside the lock. One latency at
+    // this rate, whatever Quality or air model plays (DrumSession.h).
+    setLatencySamples(session.latencySamples());
 }
 
 void SnareSimAudioProcessor::releaseResources()

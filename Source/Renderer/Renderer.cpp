@@ -166,9 +166,16 @@ RenderStats renderDrum(DrumSession& session, const RenderPlan& plan, std::span<c
         ++indexInBlock;
     };
 
-    for (std::int64_t position = 0; position < plan.numSamples;)
+    // The drum's lag behind its strikes (the interpolation to the host's rate,
+    // Drum::latencySamples) taken off: audio sample i is the engine's sample i + lag, so a strike
+    // sounds when it does on a drum simulated at the host's rate. The energy and the state stay
+    // on the engine's samples, which are the strikes' own times. The lag is the first drum's.
+    const std::int64_t lag = player.drum() != nullptr ? std::lround(player.drum()->latencySamples()) : 0;
+    const std::int64_t engineSamples = plan.numSamples + lag;
+
+    for (std::int64_t position = 0; position < engineSamples;)
     {
-        const int n = (int) std::min<std::int64_t>(kRenderBlockSize, plan.numSamples - position);
+        const int n = (int) std::min<std::int64_t>(kRenderBlockSize, engineSamples - position);
 
         // Every strike and change scheduled in this block, on its sample (before the step that computes it).
         gatherEvents(plan, position, n, std::nullopt, nextStrike, nextChange, events);
@@ -179,20 +186,26 @@ RenderStats renderDrum(DrumSession& session, const RenderPlan& plan, std::span<c
         session.process(mixBlock.data(), n, events, &observer);
         engineTime += Clock::now() - start;
 
-        for (std::size_t c = 0; c < numChannels; ++c)
+        const auto skip = (std::size_t) std::clamp<std::int64_t>(lag - position, 0, n); // the lag's samples in this block
+        if (skip < (std::size_t) n)
         {
-            if (mics[c] == Channel {})
-                std::copy_n(mixBlock.begin(), n, blocks[c].begin());
-            channels[c] = std::span<const float>(blocks[c].data(), (std::size_t) n);
-            statistics.addAudio(channels[c]);
+            for (std::size_t c = 0; c < numChannels; ++c)
+            {
+                if (mics[c] == Channel {})
+                    std::copy_n(mixBlock.begin(), n, blocks[c].begin());
+                channels[c] = std::span<const float>(blocks[c].data() + skip, (std::size_t) n - skip);
+                statistics.addAudio(channels[c]);
+            }
+            if (sinks.audio)
+                sinks.audio(channels);
         }
-        if (sinks.audio)
-            sinks.audio(channels);
-        if (trackEnergy)
+        const auto rows = (std::size_t) std::clamp<std::int64_t>(plan.numSamples - position, 0, n); // the plan's samples in this block
+        if (trackEnergy && rows > 0)
         {
-            statistics.addEnergy(ledgers);
+            const std::span<const EnergyLedger> kept(ledgers.data(), rows);
+            statistics.addEnergy(kept);
             if (sinks.energy)
-                sinks.energy(position, ledgers);
+                sinks.energy(position, kept);
         }
         position += n;
     }

@@ -89,7 +89,8 @@ struct RenderSinks
 // Plays the plan through `session` (started: EngineSetup.h's startSession). mics: the signals
 // to render, one channel each (Microphones.h: drum.output(mic) after every step, Mic::mix the
 // session's output, an air microphone's pressure at audio level). The energy is tracked when
-// the session's drums keep their ledger (BuildOptions::trackEnergy).
+// the session's drums keep their ledger (BuildOptions::trackEnergy). The audio has the drum's
+// lag (Drum::latencySamples) taken off: a strike at sample s sounds from s, at every rate.
 RenderStats renderDrum(DrumSession& session, const RenderPlan& plan, std::span<const Channel> mics, const RenderSinks& sinks);
 
 // The plan's strikes (as the main strike, or as `note` when given) and --set-at changes in

@@ -131,8 +131,9 @@ inline juce::MidiMessage note(int velocity, int key = 38) { return juce::MidiMes
 // What the processor must output for these parameters at this rate: the engine's drum built
 // from them (makeDrumConfig, as the model builder does), each note played before the step of
 // its sample (Drum::playNote), the mix as float with |x| < 1e-30 written as 0 (the output
-// guard), denormals flushed as in processBlock. Pass the processor's currentParameters(): the
-// parameters hold floats.
+// guard), denormals flushed as in processBlock, behind the silence that brings its lag to the
+// longest at this rate (the plug-in's one latency: DrumSession.h). Pass the processor's
+// currentParameters(): the parameters hold floats.
 struct EngineNote
 {
     int sample, key, velocity;
@@ -148,7 +149,9 @@ inline std::vector<float> engineRender(const snaresim::ParameterSet& params, dou
     for (long n = 0; n < silentBefore; ++n)
         drum.step();
     std::stable_sort(notes.begin(), notes.end(), [](const EngineNote& a, const EngineNote& b) { return a.sample < b.sample; });
-    std::vector<float> out;
+    const long pad = std::lround(snaresim::longestLatencySamples(sampleRate)) - std::lround(drum.latencySamples());
+    std::vector<float> out((size_t) std::clamp<long>(pad, 0, numSamples), 0.0f);
+    numSamples -= (int) out.size();
     size_t next = 0;
     for (int n = 0; n < numSamples; ++n)
     {

@@ -138,6 +138,76 @@ TEST_CASE("a note-on at 48 kHz gives finite, non-silent audio", "[processor]")
     CHECK(stats.samples == snaresim::testing::engineRender(proc.currentParameters(), 48000.0, 48000 / 2, { { 100, 38, 100 } }));
 }
 
+TEST_CASE("one latency at a rate whatever Quality plays: a host's compensation lines every strike up", "[processor]")
+{
+    // The default's grids are simulated at 32 kHz and interpolated to the host's rate, about 2 ms
+    // late; finer grids, simulated at the host's rate (or its half), wait as long behind a pure
+    // delay (DrumSession.h). The reported latency is that lag: at 32 kHz the default plays
+    // uninterpolated, and the host's samples that fall on its steps, the latency later, hold its
+    // samples up to the interpolation's band (-22 dB; three host samples off, -4 to -8 dB); the finer drum's
+    // output is the engine's, the latency later.
+    struct Played
+    {
+        int latency;
+        std::vector<float> samples; // from the note on
+        snaresim::ParameterSet params;
+    };
+    auto play = [](double rate, double bandwidth) {
+        SnareSimAudioProcessor proc;
+        snaresim::testing::set(proc, snaresim::ParamId::bandwidth, bandwidth);
+        prepare(proc, rate, 256);
+        REQUIRE(proc.getDrum() != nullptr);
+        const int noteAt = (int) (0.01 * rate);
+        const auto stats = render(proc, 256, (int) (0.08 * rate), noteAt);
+        REQUIRE(stats.peak > 0.0f);
+        return Played { proc.getLatencySamples(), std::vector<float>(stats.samples.begin() + noteAt, stats.samples.end()),
+                        proc.currentParameters() };
+    };
+    const auto simulated = play(32000.0, 7839.5127);
+    CHECK(simulated.latency == 0); // every grid is simulated at 32 kHz
+    for (const auto& [hostRate, stepPerSample] : std::vector<std::pair<double, size_t>> { { 48000.0, 2 }, { 96000.0, 1 } })
+    {
+        const double rate = hostRate;
+        const size_t step = stepPerSample;
+        const auto reduced = play(rate, 7839.5127), finer = play(rate, 8300.0);
+        const int latency = reduced.latency;
+        CHECK(latency == std::lround(snaresim::longestLatencySamples(rate)));
+        CHECK(latency > 0.0019 * rate);
+        CHECK(finer.latency == latency);
+
+        auto errorAt = [&](int shift) { // dB of the difference, the host's samples `shift` later
+            double error = 0.0, signal = 0.0;
+            for (size_t k = 0; k * 3 + (size_t) (latency + shift) < reduced.samples.size() && k * step < simulated.samples.size(); ++k)
+            {
+                const double want = simulated.samples[k * step], got = reduced.samples[k * 3 + (size_t) (latency + shift)];
+                error += (got - want) * (got - want);
+                signal += want * want;
+            }
+            return 10.0 * std::log10(error / signal);
+        };
+        INFO(rate << " Hz, latency " << latency << ": " << errorAt(0) << " dB, a step off " << errorAt(-3) << " / " << errorAt(3) << " dB");
+        CHECK(errorAt(0) < -15.0);
+        CHECK(errorAt(-3) > -10.0);
+        CHECK(errorAt(3) > -10.0);
+
+        // the finer drum: silence for the latency, then the engine's drum
+        snaresim::Drum drum(snaresim::makeDrumConfig(finer.params, rate));
+        REQUIRE(drum.latencySamples() < latency);
+        drum.playNote(38, 100);
+        const int pad = latency - (int) std::lround(drum.latencySamples());
+        bool same = true;
+        for (size_t n = 0; n < finer.samples.size(); ++n)
+        {
+            const float want = n < (size_t) pad ? 0.0f : (float) drum.step();
+            same = same && finer.samples[n] == (std::abs(want) >= 1.0e-30f ? want : 0.0f);
+        }
+        CHECK(same);
+    }
+    // at 44.1 kHz the lag is 85.7 samples (33.075 kHz, interpolated by 4 / 3)
+    CHECK(play(44100.0, 7839.5127).latency == 86);
+    CHECK(play(44100.0, 8300.0).latency == 86);
+}
+
 TEST_CASE("blocks larger than announced are rendered in chunks", "[processor]")
 {
     SnareSimAudioProcessor proc;

@@ -12,6 +12,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <numbers>
@@ -130,6 +131,34 @@ TEST_CASE("host rate: the interpolation passes the band to 0.4 of the simulated 
             CHECK(dB < -90.0);
         }
     }
+}
+
+TEST_CASE("host rate: a drum lags its strikes by its interpolation's delay and the longest lag at a rate is the default grids'", "[rate]")
+{
+    // The interpolation's delay: delay() samples at L times the simulated rate, host rate times
+    // M, so delay() / M host samples (the test above holds the signal to it within -90 dB).
+    for (const double rate : { 22050.0, 32000.0, 44100.0, 48000.0, 64000.0, 88200.0, 96000.0, 192000.0 })
+    {
+        INFO(rate << " Hz");
+        const Drum reduced(makeDrumConfig(ParameterSet {}, rate));
+        const Drum finer(makeDrumConfig(withBandwidth(12000.0), rate));
+        for (const Drum* d : { &reduced, &finer })
+        {
+            const HostRateInterpolator up(d->config().outputUp(), d->config().outputDown());
+            CHECK(d->latencySamples() == (double) up.delay() / up.down());
+        }
+        CHECK(longestLatencySamples(rate) == std::max(reduced.latencySamples(), finer.latencySamples()));
+        // about 2 ms where the default's grids are interpolated, none where no drum is
+        if (reduced.config().outputUp() > 1)
+        {
+            CHECK(reduced.latencySamples() / rate > 0.0019);
+            CHECK(reduced.latencySamples() / rate < 0.00205);
+        }
+        else
+            CHECK(longestLatencySamples(rate) == 0.0);
+    }
+    CHECK(longestLatencySamples(48000.0) == 96.0);
+    CHECK(longestLatencySamples(44100.0) == Approx(257.0 / 3.0));
 }
 
 namespace

@@ -263,13 +263,16 @@ EngineRun playInProcess(const snaresim::DrumConfig& config, const std::vector<st
 {
     EngineRun run;
     snaresim::Drum drum(config);
+    const long long lag = std::lround(drum.latencySamples());
     std::size_t next = 0;
     double sumSquares = 0.0;
-    for (long long n = 0; n < numSamples; ++n)
+    for (long long n = 0; n < numSamples + lag; ++n)
     {
         while (next < strikes.size() && strikes[next].first <= n)
             drum.strikeAtDefaultPoint(snaresim::strikeSpeedFromVelocity(strikes[next++].second, config.strikeSpeedMax_m_per_s));
         const float x = (float) drum.step();
+        if (n < lag)
+            continue;
         run.mix.push_back(x);
         run.peak = std::max(run.peak, (double) std::abs(x));
         sumSquares += (double) x * (double) x;

@@ -115,7 +115,8 @@ struct EnergyColumns
 EnergyColumns energyColumns(const std::string& header);
 
 // The renderer's drum played in-process, as Renderer.cpp plays it: each strike (sample, MIDI
-// velocity) at the default strike point before the step of its sample, the mix as float.
+// velocity) at the default strike point before the step of its sample, the mix as float with
+// the drum's lag taken off (Drum::latencySamples).
 struct EngineRun
 {
     std::vector<float> mix;
