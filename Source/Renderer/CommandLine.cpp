@@ -717,10 +717,10 @@ Output:
                         latest strike + 2). Strikes at or after the end are not played.
   --sample-rate HZ      whole number of Hz, 8000..384000 (default 48000). From 44100 Hz
                         the default's grids (bandwidth to 8.1 kHz) are simulated at 32 or
-                        33.075 kHz and resampled to the rate (about 2 ms later); finer
-                        grids from 88200 Hz at the rate halved while it stays at 44.1 kHz
-                        or above (1.34 ms later at 96 and 192 kHz); the air box at the
-                        rate itself
+                        33.075 kHz and resampled to the rate; finer grids from 88200 Hz
+                        at the rate halved while it stays at 44.1 kHz or above; the air
+                        box at the rate itself. The resampling's delay (about 2 ms) is
+                        taken off: a strike at t sounds at t
   --energy-csv FILE     also write the energy ledger, one row per sample (where the drum
                         is simulated at a lower rate, the last simulated step's ledger):
                         time_s, one column per term of the ledger (batter_J, carry_J,
