@@ -67,8 +67,9 @@ enum class OnBuildFailure
     raise     // std::invalid_argument, as buildDrum (offline clients, who report it)
 };
 
-// Builds a model from `params` with buildDrum. Falling back, it never throws anything but
-// std::bad_alloc. Not for the audio thread.
+// Builds a model from `params` with buildDrum, with BuildOptions::constantLatency its pad to
+// the longest lag at the rate. Falling back, it never throws anything but std::bad_alloc. Not
+// for the audio thread.
 std::unique_ptr<DrumModel> buildModel(const ParameterSet& params, double sampleRate, const BuildOptions& options = {},
                                       OnBuildFailure onFailure = OnBuildFailure::fallBack);
 
