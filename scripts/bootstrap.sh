@@ -147,9 +147,9 @@ case "$mode" in
         # Two at a time: the instrumented physics is slow, and every test works in its own folder.
         # The tests labelled slow (long renders and mode fits that repeat the code paths of
         # shorter tests) run in the release suite only; the corner test does run here, on every
-        # core, with rolls of 0.25 s (2 s in the release suite; it prints the length).
+        # core, with rolls of 0.13 s, three strikes (2 s in the release suite; it prints the length).
         ctest --test-dir "$build_dir" --output-on-failure -j "$jobs" -LE slow
-        SNARESIM_CORNER_SECONDS="${SNARESIM_CORNER_SECONDS:-0.25}" \
+        SNARESIM_CORNER_SECONDS="${SNARESIM_CORNER_SECONDS:-0.13}" \
             ctest --test-dir "$build_dir" --output-on-failure -R "parameter at its limits"
         ;;
     fuzz)
