@@ -43,10 +43,10 @@ private:
     static int tapsFor(int up) noexcept;
 
     int L, M;
-    int perPhase = 1;         // taps of each phase (M)
-    int taps = 1;             // M L - 1, odd: a whole delay
-    std::vector<double> h;    // phase-major: phase p's taps h[p + m L] at [p M + m]
-    std::vector<double> ring; // per channel, 2 M samples, the newest at pos and pos + M
+    int perPhase = 1;         // taps of each phase (P)
+    int taps = 1;             // P L - 1 or one less, odd: a whole delay
+    std::vector<double> h;    // phase-major: phase p's taps h[p + m L] at [p P + m]
+    std::vector<double> ring; // per channel, 2 P samples, the newest at pos and pos + P
     int pos = 0;
 };
 

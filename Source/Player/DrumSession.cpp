@@ -31,10 +31,7 @@ std::string timesRealTime(double load, int decimals)
         std::snprintf(text, sizeof text, "%ldx real time", std::lround(load));
     return text;
 }
-} // namespace
 
-namespace
-{
 // Live and bouncing, every drum lags by the longest at the rate; a render takes each drum's own.
 BuildOptions withLatency(BuildOptions options, DrumSession::Mode mode)
 {

@@ -42,10 +42,9 @@ std::unique_ptr<DrumModel> buildModel(const ParameterSet& params, double sampleR
         return model;
     }
 
-    // the pad that brings this drum's lag to the longest at this rate
     auto padded = [&](std::unique_ptr<DrumModel> m) {
         if (options.constantLatency && m->drum != nullptr)
-            m->pad.resize((int) std::lround(longestLatencySamples(sampleRate)) - (int) std::lround(m->drum->latencySamples()));
+            m->pad.resize(latencyPadFor(*m->drum));
         return m;
     };
 

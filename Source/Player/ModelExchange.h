@@ -55,6 +55,13 @@ struct DrumModel
     }
 };
 
+// The whole samples that bring a drum's lag to the longest at its host rate
+// (longestLatencySamples, Drum::latencySamples): its pad under BuildOptions::constantLatency.
+inline int latencyPadFor(const Drum& drum) noexcept
+{
+    return (int) std::lround(longestLatencySamples(drum.sampleRate())) - (int) std::lround(drum.latencySamples());
+}
+
 // The one place a Drum is built for a client: the parameters mapped at this rate
 // (makeDrumConfig), the options applied, the drum made. Throws std::invalid_argument when the
 // drum cannot be simulated so. Not for the audio thread.

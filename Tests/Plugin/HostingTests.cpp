@@ -12,6 +12,7 @@
 
 #include "Drum.h"
 #include "DrumConfig.h"
+#include "ModelExchange.h"
 #include "Parameters.h"
 #include "PluginHostHarness.h"
 #include "Presets.h"
@@ -184,8 +185,7 @@ std::vector<float> engineRender(const snaresim::ParameterSet& values, double rat
     if (! offline && playing.get(ParamId::airModel) == (double) snaresim::AirModel::airbox)
         playing.set(ParamId::airModel, (double) snaresim::AirModel::cavity);
     snaresim::Drum drum(snaresim::makeDrumConfig(playing, rate));
-    const long pad = std::lround(snaresim::longestLatencySamples(rate)) - std::lround(drum.latencySamples());
-    std::vector<float> out((size_t) std::clamp<long>(pad, 0, numSamples), 0.0f);
+    std::vector<float> out((size_t) std::clamp(snaresim::latencyPadFor(drum), 0, numSamples), 0.0f);
     const int played = numSamples - (int) out.size();
     for (int n = 0; n < played; ++n)
     {

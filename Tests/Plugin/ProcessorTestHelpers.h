@@ -6,6 +6,7 @@
 
 #include "Drum.h"
 #include "DrumConfig.h"
+#include "ModelExchange.h"
 
 #include <juce_audio_processors/juce_audio_processors.h>
 
@@ -149,8 +150,7 @@ inline std::vector<float> engineRender(const snaresim::ParameterSet& params, dou
     for (long n = 0; n < silentBefore; ++n)
         drum.step();
     std::stable_sort(notes.begin(), notes.end(), [](const EngineNote& a, const EngineNote& b) { return a.sample < b.sample; });
-    const long pad = std::lround(snaresim::longestLatencySamples(sampleRate)) - std::lround(drum.latencySamples());
-    std::vector<float> out((size_t) std::clamp<long>(pad, 0, numSamples), 0.0f);
+    std::vector<float> out((size_t) std::clamp(snaresim::latencyPadFor(drum), 0, numSamples), 0.0f);
     numSamples -= (int) out.size();
     size_t next = 0;
     for (int n = 0; n < numSamples; ++n)

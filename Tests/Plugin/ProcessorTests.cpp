@@ -194,7 +194,7 @@ TEST_CASE("one latency at a rate whatever Quality plays: a host's compensation l
         snaresim::Drum drum(snaresim::makeDrumConfig(finer.params, rate));
         REQUIRE(drum.latencySamples() < latency);
         drum.playNote(38, 100);
-        const int pad = latency - (int) std::lround(drum.latencySamples());
+        const int pad = latency - (int) std::lround(drum.latencySamples()); // the pad, from the latency reported
         bool same = true;
         for (size_t n = 0; n < finer.samples.size(); ++n)
         {
