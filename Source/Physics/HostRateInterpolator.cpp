@@ -119,6 +119,7 @@ double HostRateInterpolator::value(int c, int phase) const noexcept
     const double* x = ring.data() + (size_t) (c * 2 * perPhase) + pos;
     const double* g = h.data() + (size_t) (phase * perPhase);
     double y = 0.0;
+#pragma omp simd reduction(+ : y)
     for (int m = 0; m < perPhase; ++m)
         y += g[m] * x[m];
     return y;

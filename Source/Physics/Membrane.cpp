@@ -110,16 +110,20 @@ namespace
 #include "PerVectorTarget.inl"
 } // namespace
 
-void Membrane::setNextAt(const int* nodes, const double* values, int count)
+void Membrane::setNextAt(const int* nodes, const double* values, const int* keys, int count)
 {
-    if (momentsKept)
-        sumNext += single ? SNARESIM_ON_VECTOR_TARGET(
-                                scatterNodesMoments(fNext.data(), fX.data(), fY.data(), nodes, values, count, xSumNext, ySumNext))
-                          : SNARESIM_ON_VECTOR_TARGET(
-                                scatterNodesMoments(wNext.data(), dX.data(), dY.data(), nodes, values, count, xSumNext, ySumNext));
+    if (single)
+    {
+        const auto scatter = momentsKept ? SNARESIM_ON_VECTOR_TARGET(scatterNodesKeyed<true, float>)
+                                         : SNARESIM_ON_VECTOR_TARGET(scatterNodesKeyed<false, float>);
+        sumNext += scatter(fNext.data(), fX.data(), fY.data(), nodes, values, keys, count, xSumNext, ySumNext);
+    }
     else
-        sumNext += single ? SNARESIM_ON_VECTOR_TARGET(scatterNodes(fNext.data(), nodes, values, count))
-                          : SNARESIM_ON_VECTOR_TARGET(scatterNodes(wNext.data(), nodes, values, count));
+    {
+        const auto scatter = momentsKept ? SNARESIM_ON_VECTOR_TARGET(scatterNodesKeyed<true, double>)
+                                         : SNARESIM_ON_VECTOR_TARGET(scatterNodesKeyed<false, double>);
+        sumNext += scatter(wNext.data(), dX.data(), dY.data(), nodes, values, keys, count, xSumNext, ySumNext);
+    }
 }
 
 void Membrane::nextAt(const int* nodes, double* out, int count) const

@@ -207,26 +207,6 @@ void blockSecondDifferences(const Real* __restrict next, const Real* __restrict 
         }
     }
 }
-// The same, also adding the changes of sum(xs w), sum(ys w) to dx, dy.
-template <class Real>
-double scatterNodesMoments(Real* __restrict w, const Real* __restrict xs, const Real* __restrict ys, const int* __restrict nodes,
-                           const double* __restrict values, int count, double& dx, double& dy)
-{
-    double change = 0.0, cx = 0.0, cy = 0.0;
-#pragma omp simd reduction(+ : change, cx, cy)
-    for (int j = 0; j < count; ++j)
-    {
-        const Real v = (Real) values[j];
-        const double d = (double) v - (double) w[nodes[j]];
-        change += d;
-        cx += (double) xs[nodes[j]] * d;
-        cy += (double) ys[nodes[j]] * d;
-        w[nodes[j]] = v;
-    }
-    dx += cx;
-    dy += cy;
-    return change;
-}
 // w at count nodes into out (a gather).
 template <class Real>
 void gatherNodes(const Real* __restrict w, const int* __restrict nodes, double* __restrict out, int count)
@@ -235,20 +215,37 @@ void gatherNodes(const Real* __restrict w, const int* __restrict nodes, double* 
     for (int j = 0; j < count; ++j)
         out[j] = (double) w[nodes[j]];
 }
-// values at count distinct nodes of w (a scatter); returns the change of w's sum.
-template <class Real>
-double scatterNodes(Real* __restrict w, const int* __restrict nodes, const double* __restrict values, int count)
+// values at count distinct nodes of w (a scatter). Each change is summed into one of four partial
+// sums by its key (keys[j] & 3), in the order of the keys, which increase: an entry left out
+// whose value is its node's own adds exactly zero, so any subset of the entries (in the same
+// order) gives the same sums to the last bit. Returns the change of w's sum; with Moments also
+// adds the changes of sum(xs w), sum(ys w) to dx, dy.
+template <bool Moments, class Real>
+double scatterNodesKeyed(Real* __restrict w, const Real* __restrict xs, const Real* __restrict ys, const int* __restrict nodes,
+                         const double* __restrict values, const int* __restrict keys, int count, double& dx, double& dy)
 {
-    double change = 0.0;
-#pragma omp simd reduction(+ : change)
+    double c[4] = {}, cx[4] = {}, cy[4] = {};
     for (int j = 0; j < count; ++j)
     {
+        const int node = nodes[j], lane = keys[j] & 3;
         const Real v = (Real) values[j];
-        change += (double) v - (double) w[nodes[j]];
-        w[nodes[j]] = v;
+        const double d = (double) v - (double) w[node];
+        c[lane] += d;
+        if constexpr (Moments)
+        {
+            cx[lane] += (double) xs[node] * d;
+            cy[lane] += (double) ys[node] * d;
+        }
+        w[node] = v;
     }
-    return change;
+    if constexpr (Moments)
+    {
+        dx += (cx[0] + cx[1]) + (cx[2] + cx[3]);
+        dy += (cy[0] + cy[1]) + (cy[2] + cy[3]);
+    }
+    return (c[0] + c[1]) + (c[2] + c[3]);
 }
+
 // out[ix] = scale * perBlock[block[ix]] along a row (a band's blocks, node by node).
 template <class Real>
 void expandRow(int n, const int* __restrict block, const double* __restrict perBlock, double scale, Real* __restrict out)

@@ -96,6 +96,10 @@ SnareContact::SnareContact(const SnareSpec& spec, SnareWires& wires, Membrane& c
     activePoints.assign(numPoints, 0);
     solveWireNode.assign(numPoints, 0);
     activeGroups.assign(groupNode.size(), 0);
+    solveGroupNode.assign(groupNode.size(), 0);
+    groupIndex.resize(groupNode.size());
+    for (size_t g = 0; g < groupIndex.size(); ++g)
+        groupIndex[g] = (int) g;
     activeClasses.reserve(classes.size());
     psiQ.assign(numPoints, 0.0);
     trialPsi = psiQ;
@@ -280,19 +284,21 @@ SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wire
     coefficients(m, wireNode, before, now, psiSolved, pointW0.data(), pointCc.data(), gammaS, u);
 
     // Per group: S = sum alpha / (1 + sum beta) and W; then the node and the ends (eq. 32a).
-    // Every group's node is written, those left out with W0 (their free value), so that the
-    // head's running sum of w^{n+1} (Membrane::setNextAt) adds the same changes in the same
-    // order whichever groups were solved.
+    // Only the solved groups' nodes are written (the others keep their free value W0), keyed by
+    // their group's index, so that the head's running sum of w^{n+1} (Membrane::setNextAt) is
+    // the same to the last bit whichever groups were solved.
     for (const SizeClass& c : layout)
         SNARESIM_ON_VECTOR_TARGET(solveClass)
         (c.size, c.groupCount, alphaQ.data() + c.pointBegin, betaQ.data() + c.pointBegin, W0 + c.groupBegin, cc + c.groupBegin, hs,
          solveGroupS.data() + c.groupBegin, W + c.groupBegin);
-    if (! whole)
+    if (whole)
+        carry.setNextAt(groupNode.data(), groupW.data(), groupIndex.data(), numGroups);
+    else
     {
-        std::memcpy(groupW.data(), groupW0.data(), sizeof(double) * (size_t) numGroups);
-        SNARESIM_ON_VECTOR_TARGET(scatterPoints)(solvedGroups, group, solveGroupW.data(), groupW.data());
+        SNARESIM_ON_VECTOR_TARGET(gatherPoints<int>)(solvedGroups, group, groupNode.data(), solveGroupNode.data());
+        carry.setNextAt(solveGroupNode.data(), solveGroupW.data(), group, solvedGroups);
+        SNARESIM_ON_VECTOR_TARGET(scatterPoints)(solvedGroups, group, solveGroupW.data(), groupW.data()); // the ends' groups below
     }
-    carry.setNextAt(groupNode.data(), groupW.data(), numGroups);
     for (int g : endGroups)
         for (int e = groupEndBegin[(size_t) g]; e < groupEndBegin[(size_t) g + 1]; ++e)
             u[endWireNode[(size_t) groupEnds[(size_t) e]]] = groupW[(size_t) g];
