@@ -110,19 +110,19 @@ namespace
 #include "PerVectorTarget.inl"
 } // namespace
 
-void Membrane::setNextAt(const int* nodes, const double* values, const int* keys, int count)
+void Membrane::setNextAt(const int* nodes, const double* values, const int* index, int count)
 {
     if (single)
     {
         const auto scatter = momentsKept ? SNARESIM_ON_VECTOR_TARGET(scatterNodesKeyed<true, float>)
                                          : SNARESIM_ON_VECTOR_TARGET(scatterNodesKeyed<false, float>);
-        sumNext += scatter(fNext.data(), fX.data(), fY.data(), nodes, values, keys, count, xSumNext, ySumNext);
+        sumNext += scatter(fNext.data(), fX.data(), fY.data(), nodes, values, index, count, xSumNext, ySumNext);
     }
     else
     {
         const auto scatter = momentsKept ? SNARESIM_ON_VECTOR_TARGET(scatterNodesKeyed<true, double>)
                                          : SNARESIM_ON_VECTOR_TARGET(scatterNodesKeyed<false, double>);
-        sumNext += scatter(wNext.data(), dX.data(), dY.data(), nodes, values, keys, count, xSumNext, ySumNext);
+        sumNext += scatter(wNext.data(), dX.data(), dY.data(), nodes, values, index, count, xSumNext, ySumNext);
     }
 }
 

@@ -107,10 +107,10 @@ public:
         moved(node, value - wNext[(size_t) node]);
         wNext[(size_t) node] = value;
     }
-    // The same at count distinct nodes, the running sums' changes summed by key (keys[j] & 3, the
-    // keys increasing): the entries of any subset whose values are their nodes' own left out, the
-    // sums are the same to the last bit.
-    void setNextAt(const int* nodes, const double* values, const int* keys, int count);
+    // The same for count entries: values[j] at nodes[index[j]] (index null: nodes[j]; the
+    // indices distinct and increasing), the running sums' changes summed by index: left out,
+    // an entry whose value is its node's own changes nothing, to the last bit.
+    void setNextAt(const int* nodes, const double* values, const int* index, int count);
     // w^{n+1} at count nodes, into out.
     void nextAt(const int* nodes, double* out, int count) const;
     // w^{n+1} copied out and back (w sized by the first call), for a step's coupling solved

@@ -215,19 +215,19 @@ void gatherNodes(const Real* __restrict w, const int* __restrict nodes, double* 
     for (int j = 0; j < count; ++j)
         out[j] = (double) w[nodes[j]];
 }
-// values at count distinct nodes of w (a scatter). Each change is summed into one of four partial
-// sums by its key (keys[j] & 3), in the order of the keys, which increase: an entry left out
-// whose value is its node's own adds exactly zero, so any subset of the entries (in the same
-// order) gives the same sums to the last bit. Returns the change of w's sum; with Moments also
-// adds the changes of sum(xs w), sum(ys w) to dx, dy.
+// values[j] at node nodes[k] of w, k = index[j] (index null: j; the k distinct and increasing),
+// a scatter. Each change is summed into one of four partial sums by k & 3, in the order of j:
+// an entry k left out whose value is its node's own adds exactly zero, so any subset of the k
+// gives the same sums to the last bit. Returns the change of w's sum; with Moments also adds the
+// changes of sum(xs w), sum(ys w) to dx, dy.
 template <bool Moments, class Real>
 double scatterNodesKeyed(Real* __restrict w, const Real* __restrict xs, const Real* __restrict ys, const int* __restrict nodes,
-                         const double* __restrict values, const int* __restrict keys, int count, double& dx, double& dy)
+                         const double* __restrict values, const int* __restrict index, int count, double& dx, double& dy)
 {
     double c[4] = {}, cx[4] = {}, cy[4] = {};
     for (int j = 0; j < count; ++j)
     {
-        const int node = nodes[j], lane = keys[j] & 3;
+        const int k = index != nullptr ? index[j] : j, node = nodes[k], lane = k & 3;
         const Real v = (Real) values[j];
         const double d = (double) v - (double) w[node];
         c[lane] += d;

@@ -96,10 +96,6 @@ SnareContact::SnareContact(const SnareSpec& spec, SnareWires& wires, Membrane& c
     activePoints.assign(numPoints, 0);
     solveWireNode.assign(numPoints, 0);
     activeGroups.assign(groupNode.size(), 0);
-    solveGroupNode.assign(groupNode.size(), 0);
-    groupIndex.resize(groupNode.size());
-    for (size_t g = 0; g < groupIndex.size(); ++g)
-        groupIndex[g] = (int) g;
     activeClasses.reserve(classes.size());
     psiQ.assign(numPoints, 0.0);
     trialPsi = psiQ;
@@ -291,14 +287,9 @@ SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wire
         SNARESIM_ON_VECTOR_TARGET(solveClass)
         (c.size, c.groupCount, alphaQ.data() + c.pointBegin, betaQ.data() + c.pointBegin, W0 + c.groupBegin, cc + c.groupBegin, hs,
          solveGroupS.data() + c.groupBegin, W + c.groupBegin);
-    if (whole)
-        carry.setNextAt(groupNode.data(), groupW.data(), groupIndex.data(), numGroups);
-    else
-    {
-        SNARESIM_ON_VECTOR_TARGET(gatherPoints<int>)(solvedGroups, group, groupNode.data(), solveGroupNode.data());
-        carry.setNextAt(solveGroupNode.data(), solveGroupW.data(), group, solvedGroups);
+    carry.setNextAt(groupNode.data(), W, whole ? nullptr : group, whole ? numGroups : solvedGroups);
+    if (! whole)
         SNARESIM_ON_VECTOR_TARGET(scatterPoints)(solvedGroups, group, solveGroupW.data(), groupW.data()); // the ends' groups below
-    }
     for (int g : endGroups)
         for (int e = groupEndBegin[(size_t) g]; e < groupEndBegin[(size_t) g + 1]; ++e)
             u[endWireNode[(size_t) groupEnds[(size_t) e]]] = groupW[(size_t) g];

@@ -181,7 +181,6 @@ private:
     // groups and points that do (the class layout over them: activeClasses), their values gathered.
     std::vector<double> groupReach;
     std::vector<int> activeGroups, activePoints, solveWireNode;
-    std::vector<int> solveGroupNode, groupIndex; // the solved groups' nodes; each group's index (the whole solve's keys)
     std::vector<SizeClass> activeClasses;
     std::vector<double> solveXiPrev, solveXiNow, solveXiNext, solvePsi, solveDropped;
     std::vector<double> solveGroupW0, solveGroupCc, solveGroupS, solveGroupW;
