@@ -348,11 +348,13 @@ TEST_CASE("plots: --energy-plot and --spectrogram write PNG images", "[renderer]
         CHECK(std::abs(bottom->y + 0.5 - yOfBalance(innerLo)) <= kCurveTolerance_px);
         // Where they are drawn: the columns around the extreme pixels hold samples that reach
         // the extremes' heights (at round-off the curve may touch its extreme more than once).
+        // Only the rows the extremes are taken from count: near the panel's left edge the
+        // columns also hold earlier rows, which may lie beyond the inner extremes.
         auto reachedNear = [&](float x, bool highest) {
             const double first = (x - kCurveTolerance_px - balanceArea.getX()) / balanceArea.getWidth() * durationMs / 1000.0 * rate;
             const double last = (x + 1.0 + kCurveTolerance_px - balanceArea.getX()) / balanceArea.getWidth() * durationMs / 1000.0 * rate;
             double reached = highest ? lo : hi;
-            for (std::size_t n = (std::size_t) std::max(0.0, first); n < std::min((double) rows.size(), last); ++n)
+            for (std::size_t n = std::max(firstInner, (std::size_t) std::max(0.0, first)); n < std::min((double) rows.size(), last); ++n)
             {
                 const double v = (rows[n][columns.balance] - balance0) / h0;
                 reached = highest ? std::max(reached, v) : std::min(reached, v);
