@@ -77,7 +77,7 @@ public:
     bool engaged; // the snares on the head (Drum::setSnaresEngaged)
 
 private:
-    std::vector<double> saved; // the wires' free u^{n+1}, for the air box's trials
+    AlignedVector<double> saved; // the wires' free u^{n+1}, for the air box's trials
 };
 
 } // namespace snaresim

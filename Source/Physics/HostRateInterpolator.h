@@ -9,6 +9,8 @@
 // The grids' cost grows with the rate squared and more, the interpolation's with the rate.
 // Not a component: it stores no energy and exerts no force. Real-time safe after construction.
 
+#include "CacheAligned.h"
+
 #include <array>
 #include <vector>
 
@@ -43,10 +45,10 @@ private:
     static int tapsFor(int up) noexcept;
 
     int L, M;
-    int perPhase = 1;         // taps of each phase (P)
-    int taps = 1;             // P L - 1 or one less, odd: a whole delay
-    std::vector<double> h;    // phase-major: phase p's taps h[p + m L] at [p P + m]
-    std::vector<double> ring; // per channel, 2 P samples, the newest at pos and pos + P
+    int perPhase = 1;           // taps of each phase (P)
+    int taps = 1;               // P L - 1 or one less, odd: a whole delay
+    AlignedVector<double> h;    // phase-major: phase p's taps h[p + m L] at [p P + m]
+    AlignedVector<double> ring; // per channel, 2 P samples, the newest at pos and pos + P
     int pos = 0;
 };
 

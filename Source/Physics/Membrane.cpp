@@ -48,10 +48,11 @@ Membrane::Membrane(const MembraneSpec& s, double timeStep, double reserve, doubl
     single = s.precision == HeadPrecision::single_precision;
     if (single)
     {
-        fNext.assign((size_t) g.numNodes(), 0.0f);
+        fNext.assign((size_t) g.numNodes(), n, 0.0f);
         fNow = fNext;
         fPrev = fNext;
-        fMask.assign(g.mask().begin(), g.mask().end());
+        fMask.assign((size_t) g.numNodes(), n, 0.0f);
+        std::copy(g.mask().begin(), g.mask().end(), fMask.begin());
     }
     else
     {
@@ -72,8 +73,10 @@ Membrane::Membrane(const MembraneSpec& s, double timeStep, double reserve, doubl
     {
         dRowScratch.assign((size_t) (2 * n), 0.0); // a band's row: whole blocks of up to n nodes
         accScratch.assign((size_t) n, 0.0);
-        fX.assign(xs.begin(), xs.end());
-        fY.assign(ys.begin(), ys.end());
+        fX.assign(xs.size(), n, 0.0f);
+        fY.assign(ys.size(), n, 0.0f);
+        std::copy(xs.begin(), xs.end(), fX.begin());
+        std::copy(ys.begin(), ys.end(), fY.begin());
     }
     else
     {
@@ -236,7 +239,7 @@ void Membrane::prepareBlocks(int side)
         columnBlock[(size_t) ix] = ix / side;
     blockPressure.assign((size_t) (blocks * blocks), 0.0);
     if (single)
-        fField.assign((size_t) g.numNodes(), 0.0f);
+        fField.assign((size_t) g.numNodes(), n, 0.0f);
     else
         dField.assign((size_t) g.numNodes(), 0.0);
 }

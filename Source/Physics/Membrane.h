@@ -9,6 +9,7 @@
 // as many nodes per vector and the energy identity holds to float round-off; everything read
 // out (nextAt, samples, energy) is double either way.
 
+#include "CacheAligned.h"
 #include "CircularGrid.h"
 #include "MembraneSpec.h"
 
@@ -176,19 +177,19 @@ private:
     }
     const double* response = nullptr; // per-node response to a force (setResponse), or 1
     bool single = false;
-    std::vector<double> wNext, wNow, wPrev;  // double precision, else empty
-    std::vector<float> fNext, fNow, fPrev;   // single precision, else empty
-    std::vector<float> fMask;                // single precision: the grid's mask
-    std::vector<float> fX, fY;               // single precision: x and y times the mask
-    std::vector<double> dX, dY;              // double precision: the same
-    mutable std::vector<double> dRowScratch; // a band of rows summed, for blockSumsNext
-    mutable std::vector<double> accScratch;  // a row, for blockAccelerationsIn
-    int blockSide = 0;                       // prepareBlocks: the side of addBlockPressure's blocks
-    std::vector<double> blockPressure;       // the pressures added since the last computeFree, per block
-    std::vector<int> columnBlock;            // and each column's block
-    std::vector<double> dField;              // the blocks' push per node (double state)
-    std::vector<float> fField;               // (float state)
-    bool fieldSet = false;                   // a block pressure for the next computeFree
+    std::vector<double> wNext, wNow, wPrev;   // double precision, else empty
+    RowAlignedGrid<float> fNext, fNow, fPrev; // single precision, else empty
+    RowAlignedGrid<float> fMask;              // single precision: the grid's mask
+    RowAlignedGrid<float> fX, fY;             // single precision: x and y times the mask
+    std::vector<double> dX, dY;               // double precision: the same
+    mutable std::vector<double> dRowScratch;  // a band of rows summed, for blockSumsNext
+    mutable std::vector<double> accScratch;   // a row, for blockAccelerationsIn
+    int blockSide = 0;                        // prepareBlocks: the side of addBlockPressure's blocks
+    std::vector<double> blockPressure;        // the pressures added since the last computeFree, per block
+    std::vector<int> columnBlock;             // and each column's block
+    std::vector<double> dField;               // the blocks' push per node (double state)
+    RowAlignedGrid<float> fField;             // (float state)
+    bool fieldSet = false;                    // a block pressure for the next computeFree
 };
 
 } // namespace snaresim

@@ -59,9 +59,9 @@ PressureMicrophones::PressureMicrophones(const MicSpec& spec, const CavitySpec& 
         h.width_m = h.side * g.spacing();
         h.nodeArea = g.spacing() * g.spacing();
         h.blockSum.assign((size_t) (blocks * blocks), 0.0);
-        h.block = cells.block;
-        h.cx = cells.cx;
-        h.cy = cells.cy;
+        h.block.assign(cells.block.begin(), cells.block.end());
+        h.cx.assign(cells.cx.begin(), cells.cx.end());
+        h.cy.assign(cells.cy.begin(), cells.cy.end());
         h.cells = (int) h.block.size();
         h.blocks = blocks;
         h.fine = std::clamp((int) std::lround(spec.fineCellSize_m / g.spacing()), 1, h.side);
@@ -264,7 +264,7 @@ void PressureMicrophones::sumBlock() noexcept
     filled = 0;
 }
 
-void PressureMicrophones::push(std::vector<double>& ring, const Tap& t, double value) const noexcept
+void PressureMicrophones::push(AlignedVector<double>& ring, const Tap& t, double value) const noexcept
 {
     const size_t mask = (size_t) rows - 1;
     ring[((size_t) pos + (size_t) t.delay) & mask] += t.gain * (1.0 - t.frac) * value;

@@ -25,6 +25,7 @@
 // multiply-adds per cell per microphone, summed a block of steps at a time. Real-time safe
 // after construction: setPositions and listen allocate nothing.
 
+#include "CacheAligned.h"
 #include "CavitySpec.h"
 #include "CircularGrid.h"
 #include "MicSpec.h"
@@ -73,21 +74,21 @@ public:
 private:
     struct Head
     {
-        double z = 0.0;             // plane of the head
-        double sign = 1.0;          // outward normal: +1 batter (up), -1 carry (down)
-        int side = 1;               // cell side in grid nodes
-        double width_m = 0.0;       // and in metres
-        double nodeArea = 0.0;      // h^2 of the head's grid (a block sum times it is a volume)
-        int cells = 0;              // blocks holding interior nodes
-        std::vector<int> block;     // cell -> block
-        std::vector<double> cx, cy; // cell centres (m)
+        double z = 0.0;               // plane of the head
+        double sign = 1.0;            // outward normal: +1 batter (up), -1 carry (down)
+        int side = 1;                 // cell side in grid nodes
+        double width_m = 0.0;         // and in metres
+        double nodeArea = 0.0;        // h^2 of the head's grid (a block sum times it is a volume)
+        int cells = 0;                // blocks holding interior nodes
+        AlignedVector<int> block;     // cell -> block
+        AlignedVector<double> cx, cy; // cell centres (m)
         const CircularGrid* grid = nullptr;
-        int blocks = 0;                  // blocks per row of the grid
-        int fine = 1;                    // side of the cells near a microphone, in grid nodes
-        std::vector<double> blockSum;    // the blocks' sums of w^{n+1} (Membrane::blockSumsNext)
-        std::vector<double> vNow, vPrev; // cell volumes at n, n-1 (m^3)
-        int rowBegin = 0;                // its first cell's row of A (sourceRows)
-        double whole = 0.0;              // the whole head's A^n
+        int blocks = 0;                    // blocks per row of the grid
+        int fine = 1;                      // side of the cells near a microphone, in grid nodes
+        AlignedVector<double> blockSum;    // the blocks' sums of w^{n+1} (Membrane::blockSumsNext)
+        AlignedVector<double> vNow, vPrev; // cell volumes at n, n-1 (m^3)
+        int rowBegin = 0;                  // its first cell's row of A (sourceRows)
+        double whole = 0.0;                // the whole head's A^n
     };
     // One source's share of a microphone: gain at a delay of whole samples plus a fraction.
     struct Tap
@@ -111,23 +112,23 @@ private:
     struct Listener
     {
         int facing = 0;
-        std::vector<int> cell;        // taps: their sources' rows, by delay
-        std::vector<float> now, next; // gain (1 - frac), gain frac: to the delay and the one after
-        std::vector<int> runEnd;      // per delay from firstDelay: end of its run of taps
+        AlignedVector<int> cell;        // taps: their sources' rows, by delay
+        AlignedVector<float> now, next; // gain (1 - frac), gain frac: to the delay and the one after
+        AlignedVector<int> runEnd;      // per delay from firstDelay: end of its run of taps
         int firstDelay = 0, delays = 0;
         // The cells close to the microphone, heard in fine cells (a coarse cell's sum would alias
         // the head's short waves into ones that radiate): a rectangle of the grid from node
         // (nearX, nearY), nearColumns x nearRows nodes, in fine cells.
         int nearX = 0, nearY = 0, nearColumns = 0, nearRows = 0, nearCells = 0;
         int fineBegin = 0;                 // the first fine cell's row of A (sourceRows)
-        std::vector<double> fine;          // the fine cells' A, as the head gives them
+        AlignedVector<double> fine;        // the fine cells' A, as the head gives them
         Tap facingWhole {}, otherWhole {}; // the low-passed whole-head terms
-        std::vector<float> direct;         // ring: the direct sound ahead, kLanes partial sums a sample
-        std::vector<double> around;        // ring: the low-pass's input, ahead
+        AlignedVector<float> direct;       // ring: the direct sound ahead, kLanes partial sums a sample
+        AlignedVector<double> around;      // ring: the low-pass's input, ahead
         double lowPass = 0.0;
         // scratch of place() (no allocation there)
         std::vector<Tap> taps;
-        std::vector<int> tapCell, count;
+        AlignedVector<int> tapCell, count;
     };
 
     void place(Listener& l, const AirPoint& p) noexcept;
@@ -135,7 +136,7 @@ private:
     void sumBlock() noexcept;
     void beginBlocks() noexcept; // the span from the microphones' delays, a new block
     Tap tapAt(double distance_m, double gain) const noexcept;
-    void push(std::vector<double>& ring, const Tap& t, double value) const noexcept;
+    void push(AlignedVector<double>& ring, const Tap& t, double value) const noexcept;
 
     double k, radius, depth; // time step, the heads' radius, the shell's depth
     double nearWidths;       // cells within this many widths of a microphone's foot are heard in fine cells
@@ -143,11 +144,11 @@ private:
     int rows = 0;            // the rings' length (a power of two), longer than every delay
     int pos = 0;             // ring slot of step n
     int longestBlock = kLanes;
-    int span = 1;                         // steps a block holds (1 .. longestBlock): the shortest whole delay plus one
-    int filled = 0;                       // steps of the block so far
-    int blockSlot = 0;                    // ring slot of the block's first step
-    std::vector<float> sourceRows;        // kLanes floats a source: the heads' cells, then each microphone's fine cells
-    std::vector<float> tileNow, tileNext; // a microphone's runs' sums in a block, per delay, step and lane (sumTapBlock)
+    int span = 1;                           // steps a block holds (1 .. longestBlock): the shortest whole delay plus one
+    int filled = 0;                         // steps of the block so far
+    int blockSlot = 0;                      // ring slot of the block's first step
+    AlignedVector<float> sourceRows;        // kLanes floats a source: the heads' cells, then each microphone's fine cells
+    AlignedVector<float> tileNow, tileNext; // a microphone's runs' sums in a block, per delay, step and lane (sumTapBlock)
     std::array<Head, 2> heads;
     std::array<Listener, numMics> mics;
     std::array<double, numMics> out {};

@@ -82,8 +82,8 @@ SnareContact::SnareContact(const SnareSpec& spec, SnareWires& wires, Membrane& c
     }
     groupMemberBegin.push_back(pointBegin);
     groupEndBegin.push_back((int) groupEnds.size());
-    pointWireNode = std::move(wireNodeOrdered);
-    pointHeadNode = std::move(headNodeOrdered);
+    pointWireNode.assign(wireNodeOrdered.begin(), wireNodeOrdered.end());
+    pointHeadNode.assign(headNodeOrdered.begin(), headNodeOrdered.end());
     wireInterior = M - 1;
     for (auto* v : { &groupW0, &groupCc, &groupW })
         v->assign(groupNode.size(), 0.0);

@@ -90,7 +90,7 @@ public:
     int numPoints() const { return (int) pointWireNode.size(); }
     // xi = u - w_c per contact point at the latest completed step (after Drum::step), in the
     // coupling's own order (the class layout above)
-    const std::vector<double>& gaps() const { return xiNow; }
+    const AlignedVector<double>& gaps() const { return xiNow; }
     // the same gap for interior node l (1 ... M-1) of wire i
     double gapAt(int wire, int l) const;
 
@@ -153,37 +153,37 @@ private:
     bool quarterPower = true;    // beta = 1.5: hertzCoefficients
     double lastCorrection = 0.0;
     // contact points (in class layout, above): wire-array index of the node, head node
-    std::vector<int> pointWireNode, pointHeadNode;
-    std::vector<int> endWireNode, endHeadNode;
+    AlignedVector<int> pointWireNode, pointHeadNode;
+    AlignedVector<int> endWireNode, endHeadNode;
     // groups (one per head node), class by class: the node, its points and its ends (CSR)
-    std::vector<int> groupNode, groupMemberBegin, groupMembers, groupEndBegin, groupEnds;
-    std::vector<int> endGroups; // groups holding wire ends
+    AlignedVector<int> groupNode, groupMemberBegin, groupMembers, groupEndBegin, groupEnds;
+    AlignedVector<int> endGroups; // groups holding wire ends
     struct SizeClass
     {
         int size, groupBegin, groupCount, pointBegin;
     };
     std::vector<SizeClass> classes;
-    std::vector<double> xiNext, xiNow, xiPrev;
-    std::vector<double> rLast;        // last step's root per point (NaN when it was not solved): Newton's start
-    std::vector<double> psiQ;         // quadratised: psi at n+1/2 (after step) / n-1/2 (before), per point
-    std::vector<double> trialPsi;     // psiQ before the step (saveTrial)
-    std::vector<int> pointOfWireNode; // wire i, interior node l -> point (i * (M - 1) + l - 1)
-    int wireInterior = 0;             // interior nodes per wire, M - 1
+    AlignedVector<double> xiNext, xiNow, xiPrev;
+    AlignedVector<double> rLast;        // last step's root per point (NaN when it was not solved): Newton's start
+    AlignedVector<double> psiQ;         // quadratised: psi at n+1/2 (after step) / n-1/2 (before), per point
+    AlignedVector<double> trialPsi;     // psiQ before the step (saveTrial)
+    AlignedVector<int> pointOfWireNode; // wire i, interior node l -> point (i * (M - 1) + l - 1)
+    int wireInterior = 0;               // interior nodes per wire, M - 1
     // Newton: per-group scratch (sized for the largest group)
-    std::vector<int> active;
-    std::vector<double> a, b, r, psi, dpsi, phiA, damp; // damp: D per point
+    AlignedVector<int> active;
+    AlignedVector<double> a, b, r, psi, dpsi, phiA, damp; // damp: D per point
     // quadratised: per group W0, c' and W (all groups); per point solved g,
     // alpha, beta, u*
-    std::vector<double> groupW0, groupCc, groupW;
-    std::vector<double> gq, alphaQ, betaQ, uFree, dampQ;  // dampQ: D per point
-    std::vector<double> pointW0, pointCc, pointS, pointW; // each point's group's W0, c', S, W
+    AlignedVector<double> groupW0, groupCc, groupW;
+    AlignedVector<double> gq, alphaQ, betaQ, uFree, dampQ;  // dampQ: D per point
+    AlignedVector<double> pointW0, pointCc, pointS, pointW; // each point's group's W0, c', S, W
     // The solve's subset: per group its reach (predictClass: positive when it takes part), the
     // groups and points that do (the class layout over them: activeClasses), their values gathered.
-    std::vector<double> groupReach;
-    std::vector<int> activeGroups, activePoints, solveWireNode;
+    AlignedVector<double> groupReach;
+    AlignedVector<int> activeGroups, activePoints, solveWireNode;
     std::vector<SizeClass> activeClasses;
-    std::vector<double> solveXiPrev, solveXiNow, solveXiNext, solvePsi, solveDropped;
-    std::vector<double> solveGroupW0, solveGroupCc, solveGroupS, solveGroupW;
+    AlignedVector<double> solveXiPrev, solveXiNow, solveXiNext, solvePsi, solveDropped;
+    AlignedVector<double> solveGroupW0, solveGroupCc, solveGroupS, solveGroupW;
     bool solveEveryPoint = false;
     int lastSolvedPoints = 0;
     static void expandToPoints(const std::vector<SizeClass>& layout, const double* perGroup, double* perPoint);

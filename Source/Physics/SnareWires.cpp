@@ -62,7 +62,7 @@ void SnareWires::computeFree()
     SNARESIM_ON_VECTOR_TARGET(freeUpdate)(numWires, M, uNow.data(), uPrev.data(), uNext.data(), a0, a1, b0, b1, e0, e1, f0, f1);
 }
 
-double SnareWires::energyOf(const std::vector<double>& uNext, const std::vector<double>& uNow) const
+double SnareWires::energyOf(const AlignedVector<double>& uNext, const AlignedVector<double>& uNow) const
 {
     const int stride = M + 1;
     double kinetic = 0.0, potential = 0.0, sigma1Term = 0.0;

@@ -9,6 +9,7 @@
 // with trapezoid weights w_0 = w_M = 1/2; h^{n+1/2} - h^{n-1/2} = -k q^n exactly, q^n >= 0.
 // A component: its state, free update (computeFree), energy() and stepLoss().
 
+#include "CacheAligned.h"
 #include "GridDesign.h"
 #include "SnareSpec.h"
 
@@ -58,11 +59,11 @@ public:
     void advance();
     void clear();
 
-    std::vector<double> uNext, uNow, uPrev; // flat: wire i, node l at i * (M + 1) + l
+    AlignedVector<double> uNext, uNow, uPrev; // flat: wire i, node l at i * (M + 1) + l
     bool isFinite() const;
 
 private:
-    double energyOf(const std::vector<double>& later, const std::vector<double>& earlier) const;
+    double energyOf(const AlignedVector<double>& later, const AlignedVector<double>& earlier) const;
 
     int numWires, M;
     double length, hs, pitch, y0;
