@@ -25,10 +25,21 @@ void PluginState::write(juce::AudioProcessorValueTreeState& parameters, juce::Me
 
 bool PluginState::read(juce::AudioProcessorValueTreeState& parameters, const void* data, int sizeInBytes)
 {
-    if (data == nullptr || sizeInBytes <= 0)
+    if (data == nullptr || sizeInBytes <= 8)
         return false;
 
-    const auto xml = juce::AudioProcessor::getXmlFromBinary(data, sizeInBytes);
+    // AudioProcessor::copyXmlToBinary's layout: "VC2!", the text's length, the UTF-8 text. The
+    // text is checked before JUCE parses it: its XML reader runs past the end of text that is
+    // not valid UTF-8 (a lead byte skips the terminator), where getXmlFromBinary checks nothing.
+    const auto* bytes = static_cast<const char*>(data);
+    constexpr juce::uint32 magic = 0x21324356; // "VC2!"
+    if (juce::ByteOrder::littleEndianInt(bytes) != magic)
+        return false;
+    const auto stated = juce::ByteOrder::littleEndianInt(bytes + 4);
+    const int length = (int) std::min<juce::uint32>(stated, (juce::uint32)(sizeInBytes - 8));
+    if (length <= 0 || ! juce::CharPointer_UTF8::isValidString(bytes + 8, length))
+        return false;
+    const auto xml = juce::parseXML(juce::String::fromUTF8(bytes + 8, length));
 
     if (xml == nullptr || ! xml->hasTagName(treeType))
         return false;

@@ -138,6 +138,20 @@ TEST_CASE("hostile states: random bytes, truncated, version 1, another plug-in's
         expectIgnored(chunk, (int) sizeof(chunk), "a VST2 chunk");
     }
 
+    // A SnareSim state whose text is not UTF-8 (JUCE's XML reader can run past the end of such
+    // text): not read at all, though its first parameter is well formed.
+    for (const std::string bad : { std::string("\xff"), std::string(33, '\xb8') + std::string(104, '\xff'), std::string("\xc3") })
+    {
+        const std::string text =
+            "<SnareSimState stateVersion=\"2\"><PARAM id=\"snare_tension\" value=\"60\"/><PARAM id=\"damping\" value=\"3" + bad +
+            "\"/></SnareSimState>";
+        juce::MemoryBlock block(good.getData(), 4); // the magic number
+        const auto length = juce::ByteOrder::swapIfBigEndian((juce::uint32) text.size());
+        block.append(&length, 4);
+        block.append(text.data(), text.size());
+        expectIgnored(block.getData(), (int) block.getSize(), "a state whose text is not UTF-8");
+    }
+
     // SnareSim states that cannot be read in part: defaults for what is missing or unreadable,
     // in range for what is out of it. Version 0 and 1 (renamed IDs) and version 2.
     int partial = 0;
