@@ -42,14 +42,20 @@ public:
     // count values (width x width), all `value`.
     void assign(std::size_t count, int width, T value)
     {
-        constexpr std::size_t perLine = kCacheLine / sizeof(T);
-        lead = (perLine - (std::size_t) width % perLine) % perLine;
+        lead = leadFor(width);
         store.assign(count + lead, value);
+    }
+    // The values of [first, last) (width x width of them), converted to T.
+    template <class Iterator>
+    void assign(Iterator first, Iterator last, int width)
+    {
+        lead = leadFor(width);
+        store.assign(lead, T {});
+        store.insert(store.end(), first, last);
     }
     T* data() noexcept { return store.data() + lead; }
     const T* data() const noexcept { return store.data() + lead; }
     std::size_t size() const noexcept { return store.size() - lead; }
-    bool empty() const noexcept { return size() == 0; }
     T& operator[](std::size_t i) noexcept { return store[lead + i]; }
     const T& operator[](std::size_t i) const noexcept { return store[lead + i]; }
     T* begin() noexcept { return data(); }
@@ -58,6 +64,11 @@ public:
     const T* end() const noexcept { return data() + size(); }
 
 private:
+    static std::size_t leadFor(int width)
+    {
+        constexpr std::size_t perLine = kCacheLine / sizeof(T);
+        return (perLine - (std::size_t) width % perLine) % perLine;
+    }
     AlignedVector<T> store;
     std::size_t lead = 0; // values before row 0, so that row 1 starts on a line
 };

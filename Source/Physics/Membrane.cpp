@@ -51,8 +51,7 @@ Membrane::Membrane(const MembraneSpec& s, double timeStep, double reserve, doubl
         fNext.assign((size_t) g.numNodes(), n, 0.0f);
         fNow = fNext;
         fPrev = fNext;
-        fMask.assign((size_t) g.numNodes(), n, 0.0f);
-        std::copy(g.mask().begin(), g.mask().end(), fMask.begin());
+        fMask.assign(g.mask().begin(), g.mask().end(), n);
     }
     else
     {
@@ -73,10 +72,8 @@ Membrane::Membrane(const MembraneSpec& s, double timeStep, double reserve, doubl
     {
         dRowScratch.assign((size_t) (2 * n), 0.0); // a band's row: whole blocks of up to n nodes
         accScratch.assign((size_t) n, 0.0);
-        fX.assign(xs.size(), n, 0.0f);
-        fY.assign(ys.size(), n, 0.0f);
-        std::copy(xs.begin(), xs.end(), fX.begin());
-        std::copy(ys.begin(), ys.end(), fY.begin());
+        fX.assign(xs.begin(), xs.end(), n);
+        fY.assign(ys.begin(), ys.end(), n);
     }
     else
     {

@@ -128,7 +128,7 @@ private:
         double lowPass = 0.0;
         // scratch of place() (no allocation there)
         std::vector<Tap> taps;
-        AlignedVector<int> tapCell, count;
+        std::vector<int> tapCell, count;
     };
 
     void place(Listener& l, const AirPoint& p) noexcept;

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <utility>
+#include <vector>
 
 using namespace snaresim;
 
@@ -53,6 +54,18 @@ TEST_CASE("a row-aligned grid starts its row 1 on a cache line and holds a grid'
         for (float v : f)
             all = all && v == 0.25f;
         CHECK(all);
+
+        std::vector<double> values(count);
+        for (std::size_t i = 0; i < count; ++i)
+            values[i] = 0.5 * (double) i;
+        RowAlignedGrid<float> from;
+        from.assign(values.begin(), values.end(), width); // from a range, converted
+        CHECK(onLine(from.data() + width));
+        REQUIRE(from.size() == count);
+        bool converted = true;
+        for (std::size_t i = 0; i < count; ++i)
+            converted = converted && from[i] == (float) values[i];
+        CHECK(converted);
 
         for (std::size_t i = 0; i < count; ++i)
             f[i] = (float) i;
