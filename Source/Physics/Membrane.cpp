@@ -8,6 +8,21 @@
 
 namespace snaresim
 {
+namespace
+{
+// blockSumsNext's scratch for an n x n grid: every band's row for the sides the kernel holds in
+// registers (1-8: ceil(n / side) bands of ceil(n / side) side values), one band's row for others.
+size_t blockSumsScratch(int n)
+{
+    size_t most = (size_t) (2 * n);
+    for (int side = 1; side <= 8; ++side)
+    {
+        const size_t blocks = (size_t) ((n + side - 1) / side);
+        most = std::max(most, blocks * blocks * (size_t) side);
+    }
+    return most;
+}
+} // namespace
 
 double Membrane::gridSpacing(const MembraneSpec& s, double k, double reserve, double designReserve)
 {
@@ -70,15 +85,15 @@ Membrane::Membrane(const MembraneSpec& s, double timeStep, double reserve, doubl
         }
     if (single)
     {
-        dRowScratch.assign((size_t) (2 * n), 0.0); // a band's row: whole blocks of up to n nodes
-        accScratch.assign((size_t) n, 0.0);
+        dRowScratch.assign(blockSumsScratch(n), 0.0);
+        accScratch.assign((size_t) n * (size_t) n, 0.0); // up to n bands of n columns
         fX.assign(xs.begin(), xs.end(), n);
         fY.assign(ys.begin(), ys.end(), n);
     }
     else
     {
-        dRowScratch.assign((size_t) (2 * n), 0.0); // a band's row: whole blocks of up to n nodes
-        accScratch.assign((size_t) n, 0.0);
+        dRowScratch.assign(blockSumsScratch(n), 0.0);
+        accScratch.assign((size_t) n * (size_t) n, 0.0); // up to n bands of n columns
         dX = std::move(xs);
         dY = std::move(ys);
     }

@@ -182,8 +182,8 @@ private:
     RowAlignedGrid<float> fMask;              // single precision: the grid's mask
     RowAlignedGrid<float> fX, fY;             // single precision: x and y times the mask
     std::vector<double> dX, dY;               // double precision: the same
-    mutable std::vector<double> dRowScratch;  // a band of rows summed, for blockSumsNext
-    mutable std::vector<double> accScratch;   // a row, for blockAccelerationsIn
+    mutable std::vector<double> dRowScratch;  // the bands of rows summed, for blockSumsNext
+    mutable std::vector<double> accScratch;   // the bands' rows, for blockAccelerationsIn
     int blockSide = 0;                        // prepareBlocks: the side of addBlockPressure's blocks
     std::vector<double> blockPressure;        // the pressures added since the last computeFree, per block
     std::vector<int> columnBlock;             // and each column's block

@@ -88,25 +88,28 @@ void firstMoments(const Real* __restrict w, const Real* __restrict xs, const Rea
     sx = ax;
     sy = ay;
 }
-// Block sums of an n x n grid, band by band: a band's Side rows summed node by node into one
-// row (the Side values held in registers, vectorised along the row; zero beyond n), then its
-// runs of Side values, a block each. In double whatever the state: the microphones take second
-// differences in time of these sums, which would lift a float sum's rounding by 1 / (omega k)^2.
+// Block sums of an n x n grid: every band's Side rows summed node by node into a row of acc
+// (the Side values held in registers, vectorised along the row; zero beyond n), then each row's
+// runs of Side values, a block each. The runs are read once every band is summed, not right
+// after their band's stores (a load over stores still in flight waits for them). In double
+// whatever the state: the microphones take second differences in time of these sums, which
+// would lift a float sum's rounding by 1 / (omega k)^2. acc holds every band's row.
 template <int Side, class Real>
 void sumBlocks(const Real* __restrict w, int n, double* __restrict acc, double* __restrict out)
 {
-    const int blocks = (n + Side - 1) / Side;
+    const int blocks = (n + Side - 1) / Side, length = blocks * Side;
     for (int by = 0; by < blocks; ++by)
     {
         const int first = by * Side;
         const Real* row0 = w + (size_t) first * (size_t) n;
+        double* band = acc + (size_t) by * (size_t) length;
         if (first + Side <= n)
             for (int ix = 0; ix < n; ++ix)
             {
                 double s = (double) row0[ix];
                 for (int r = 1; r < Side; ++r)
                     s += (double) row0[(size_t) r * (size_t) n + (size_t) ix];
-                acc[ix] = s;
+                band[ix] = s;
             }
         else // the last, short band
             for (int ix = 0; ix < n; ++ix)
@@ -114,16 +117,20 @@ void sumBlocks(const Real* __restrict w, int n, double* __restrict acc, double* 
                 double s = 0.0;
                 for (int r = 0; r < n - first; ++r)
                     s += (double) row0[(size_t) r * (size_t) n + (size_t) ix];
-                acc[ix] = s;
+                band[ix] = s;
             }
-        for (int ix = n; ix < blocks * Side; ++ix)
-            acc[ix] = 0.0;
+        for (int ix = n; ix < length; ++ix)
+            band[ix] = 0.0;
+    }
+    for (int by = 0; by < blocks; ++by)
+    {
+        const double* band = acc + (size_t) by * (size_t) length;
         double* o = out + (size_t) by * (size_t) blocks;
         for (int bx = 0; bx < blocks; ++bx)
         {
-            double s = acc[bx * Side];
+            double s = band[bx * Side];
             for (int c = 1; c < Side; ++c)
-                s += acc[bx * Side + c];
+                s += band[bx * Side + c];
             o[bx] = s;
         }
     }
@@ -171,8 +178,9 @@ void blockSums(const Real* w, int n, int side, double* acc, double* out)
     }
     sumBlocksOfSide(w, n, side, acc, out);
 }
-// The rectangle's second differences in time summed over blocks, in double: a band of side
-// rows into acc (vectorised along the rows), then its runs.
+// The rectangle's second differences in time summed over blocks, in double: every band of side
+// rows into its row of acc (vectorised along the rows), then the rows' runs, read once every
+// band is summed (as sumBlocks). acc holds ceil(rows / side) rows of `columns`.
 template <class Real>
 void blockSecondDifferences(const Real* __restrict next, const Real* __restrict now, const Real* __restrict prev, int n, int ix0, int iy0,
                             int columns, int rows, int side, double* __restrict acc, double* __restrict out)
@@ -191,18 +199,23 @@ void blockSecondDifferences(const Real* __restrict next, const Real* __restrict 
     const int bxs = (columns + side - 1) / side, bys = (rows + side - 1) / side;
     for (int by = 0; by < bys; ++by)
     {
-        std::fill(acc, acc + columns, 0.0);
+        double* band = acc + (size_t) by * (size_t) columns;
+        std::fill(band, band + columns, 0.0);
         for (int iy = iy0 + by * side; iy < std::min(iy0 + rows, iy0 + (by + 1) * side); ++iy)
         {
             const size_t o = (size_t) iy * (size_t) n + (size_t) ix0;
             for (int ix = 0; ix < columns; ++ix)
-                acc[ix] += ((double) next[o + ix] - 2.0 * (double) now[o + ix]) + (double) prev[o + ix];
+                band[ix] += ((double) next[o + ix] - 2.0 * (double) now[o + ix]) + (double) prev[o + ix];
         }
+    }
+    for (int by = 0; by < bys; ++by)
+    {
+        const double* band = acc + (size_t) by * (size_t) columns;
         for (int bx = 0; bx < bxs; ++bx)
         {
             double s = 0.0;
             for (int ix = bx * side; ix < std::min(columns, (bx + 1) * side); ++ix)
-                s += acc[ix];
+                s += band[ix];
             out[by * bxs + bx] = s;
         }
     }

@@ -190,3 +190,46 @@ TEST_CASE("the heads' block sums equal the plain sums over their blocks, any sid
         }
     }
 }
+
+TEST_CASE("the heads' block accelerations equal the plain second differences over a rectangle's blocks", "[membrane][mics]")
+{
+    for (const HeadPrecision precision : { HeadPrecision::double_precision, HeadPrecision::single_precision })
+    {
+        DrumConfig cfg = test::losslessHead();
+        cfg.batter.precision = precision;
+        Membrane head(cfg.batter, 1.0 / cfg.sampleRate_Hz);
+        const CircularGrid& g = head.grid();
+        const int n = g.width();
+        const double h = g.spacing();
+        // three time levels, each with structure at every scale
+        for (int level = 0; level < 3; ++level)
+        {
+            if (level > 0)
+                head.advance();
+            for (int iy = 0; iy < n; ++iy)
+                for (int ix = 0; ix < n; ++ix)
+                {
+                    const int i = g.index(ix, iy);
+                    if (g.mask()[(size_t) i] > 0.5)
+                        head.setNextAt(i, 1e-4 * (g.x(ix) * (1 + level) + 2.0 * g.x(iy) * g.x(iy) * (level == 1 ? -1.0 : 1.0) +
+                                                  0.01 * std::sin(ix * 1.3 + iy * 0.7 + level)));
+                }
+        }
+        const int ix0 = n / 5, iy0 = n / 4, columns = n / 2 + 1, rows = n / 2 - 1;
+        for (int side = 1; side <= 9; ++side)
+        {
+            INFO("side " << side << (precision == HeadPrecision::single_precision ? ", single" : ", double"));
+            const int bxs = (columns + side - 1) / side, bys = (rows + side - 1) / side;
+            std::vector<double> got((size_t) (bxs * bys)), expected((size_t) (bxs * bys), 0.0);
+            head.blockAccelerationsIn(side, ix0, iy0, columns, rows, got.data());
+            for (int iy = 0; iy < rows; ++iy)
+                for (int ix = 0; ix < columns; ++ix)
+                {
+                    const int i = g.index(ix0 + ix, iy0 + iy);
+                    expected[(size_t) ((iy / side) * bxs + ix / side)] += h * h * (head.nextAt(i) - 2.0 * head.nowAt(i) + head.prevAt(i));
+                }
+            for (size_t b = 0; b < got.size(); ++b)
+                CHECK(got[b] == Approx(expected[b]).margin(1e-17));
+        }
+    }
+}
