@@ -159,23 +159,39 @@ TEST_CASE("the product's grids keep the low batter modes at the Bessel frequenci
     }
 }
 
+namespace
+{
+Membrane losslessHeadIn(HeadPrecision precision)
+{
+    DrumConfig cfg = test::losslessHead();
+    cfg.batter.precision = precision;
+    return Membrane(cfg.batter, 1.0 / cfg.sampleRate_Hz);
+}
+// w^{n+1} with structure at every scale on the disc: x (1 + level) + 2 y^2 (its sign flipped at
+// level 1) + a ripple
+void setStructured(Membrane& head, int level)
+{
+    const CircularGrid& g = head.grid();
+    const int n = g.width();
+    for (int iy = 0; iy < n; ++iy)
+        for (int ix = 0; ix < n; ++ix)
+        {
+            const int i = g.index(ix, iy);
+            if (g.mask()[(size_t) i] > 0.5)
+                head.setNextAt(i, 1e-4 * (g.x(ix) * (1 + level) + 2.0 * g.x(iy) * g.x(iy) * (level == 1 ? -1.0 : 1.0) +
+                                          0.01 * std::sin(ix * 1.3 + iy * 0.7 + level)));
+        }
+}
+} // namespace
+
 TEST_CASE("the heads' block sums equal the plain sums over their blocks, any side, either precision", "[membrane][mics]")
 {
     for (const HeadPrecision precision : { HeadPrecision::double_precision, HeadPrecision::single_precision })
     {
-        DrumConfig cfg = test::losslessHead();
-        cfg.batter.precision = precision;
-        Membrane head(cfg.batter, 1.0 / cfg.sampleRate_Hz);
+        Membrane head = losslessHeadIn(precision);
         const CircularGrid& g = head.grid();
         const int n = g.width();
-        // a displacement with structure at every scale: w = x + 2 y^2 + a ripple, on the disc
-        for (int iy = 0; iy < n; ++iy)
-            for (int ix = 0; ix < n; ++ix)
-            {
-                const int i = g.index(ix, iy);
-                if (g.mask()[(size_t) i] > 0.5)
-                    head.setNextAt(i, 1e-4 * (g.x(ix) + 2.0 * g.x(iy) * g.x(iy) + 0.01 * std::sin(ix * 1.3 + iy * 0.7)));
-            }
+        setStructured(head, 0);
         for (int side = 1; side <= 13; ++side) // 1-8 have their own loops, the others share one
         {
             INFO("side " << side << (precision == HeadPrecision::single_precision ? ", single" : ", double"));
@@ -195,25 +211,15 @@ TEST_CASE("the heads' block accelerations equal the plain second differences ove
 {
     for (const HeadPrecision precision : { HeadPrecision::double_precision, HeadPrecision::single_precision })
     {
-        DrumConfig cfg = test::losslessHead();
-        cfg.batter.precision = precision;
-        Membrane head(cfg.batter, 1.0 / cfg.sampleRate_Hz);
+        Membrane head = losslessHeadIn(precision);
         const CircularGrid& g = head.grid();
         const int n = g.width();
         const double h = g.spacing();
-        // three time levels, each with structure at every scale
-        for (int level = 0; level < 3; ++level)
+        for (int level = 0; level < 3; ++level) // three time levels
         {
             if (level > 0)
                 head.advance();
-            for (int iy = 0; iy < n; ++iy)
-                for (int ix = 0; ix < n; ++ix)
-                {
-                    const int i = g.index(ix, iy);
-                    if (g.mask()[(size_t) i] > 0.5)
-                        head.setNextAt(i, 1e-4 * (g.x(ix) * (1 + level) + 2.0 * g.x(iy) * g.x(iy) * (level == 1 ? -1.0 : 1.0) +
-                                                  0.01 * std::sin(ix * 1.3 + iy * 0.7 + level)));
-                }
+            setStructured(head, level);
         }
         const int ix0 = n / 5, iy0 = n / 4, columns = n / 2 + 1, rows = n / 2 - 1;
         for (int side = 1; side <= 9; ++side)
