@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace snaresim
 {
@@ -43,6 +44,9 @@ Membrane::Membrane(const MembraneSpec& s, double timeStep, double reserve, doubl
     const int n = g.width();
     rowBegin.assign((size_t) n, 1);
     rowEnd.assign((size_t) n, 1); // empty rows: begin == end
+    rowY.resize((size_t) n);
+    for (int iy = 0; iy < n; ++iy)
+        rowY[(size_t) iy] = g.x(iy);
     for (int iy = 1; iy < n - 1; ++iy)
     {
         int first = -1, last = -1;
@@ -178,23 +182,11 @@ void Membrane::computeFree(double p0, double px, double py)
         return;
     }
     const auto update =
-        tilt ? (field ? SNARESIM_ON_VECTOR_TARGET(updateRow<true, true>) : SNARESIM_ON_VECTOR_TARGET(updateRow<true, false>))
-             : (field ? SNARESIM_ON_VECTOR_TARGET(updateRow<false, true>) : SNARESIM_ON_VECTOR_TARGET(updateRow<false, false>));
-    double sum = 0.0, sx = 0.0, sy = 0.0;
-    for (int iy = 1; iy < n - 1; ++iy)
-    {
-        const int begin = iy * n + rowBegin[(size_t) iy];
-        const int count = rowEnd[(size_t) iy] - rowBegin[(size_t) iy];
-        if (count <= 0)
-            continue;
-        const double y = g.x(iy);
-        double along = 0.0;
-        const double row = update(wNext.data() + begin, wNow.data() + begin, wPrev.data() + begin, field ? dField.data() + begin : nullptr,
-                                  dX.data() + begin, n, count, a0, a1, b0, b1, tilt ? push + gain * py * y : push, gain * px, along);
-        sum += row;
-        sx += along;
-        sy += y * row;
-    }
+        tilt ? (field ? SNARESIM_ON_VECTOR_TARGET(updateRows<true, true>) : SNARESIM_ON_VECTOR_TARGET(updateRows<true, false>))
+             : (field ? SNARESIM_ON_VECTOR_TARGET(updateRows<false, true>) : SNARESIM_ON_VECTOR_TARGET(updateRows<false, false>));
+    double sx = 0.0, sy = 0.0;
+    const double sum = update(wNext.data(), wNow.data(), wPrev.data(), field ? dField.data() : nullptr, dX.data(), rowY.data(),
+                              rowBegin.data(), rowEnd.data(), n, a0, a1, b0, b1, push, gain * px, gain * py, sx, sy);
     sumNext = sum;
     xSumNext = sx;
     ySumNext = sy;

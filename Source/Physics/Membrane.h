@@ -162,6 +162,7 @@ private:
     double a0 = 0, a1 = 0, b0 = 0, b1 = 0; // stencil coefficients
     float r = 0, cl = 0, cs = 0;           // the same as an increment, for the float state (computeFree)
     std::vector<int> rowBegin, rowEnd;     // columns holding interior nodes, per row
+    std::vector<double> rowY;              // y of each row (m)
     double sumNext = 0.0;                  // sum(w^{n+1})
     bool momentsKept = false;              // keepMoments
     double xSumNext = 0.0, ySumNext = 0.0; // sum(x w^{n+1}), sum(y w^{n+1}), when kept

@@ -1,35 +1,92 @@
 // The membrane's hot loops (eq. 22 and what the couplings read and write on the grid),
 // compiled once per vector target by PerVectorTarget.inl: no include guard, no includes.
 
-// One row of eq. (22): out = c0 w + c1 (4 neighbours of w) + d0 wp + d1 (4 neighbours of wp) + push
-// (+ px xs[m] with Tilt, + field[m] with Field), for `count` nodes that all lie inside the disc;
-// returns the sum of out, and with Tilt sets along to the sum of xs[m] out[m] (the row's first
-// moment in x).
+// Eq. (22) over the disc's rows 1 .. n-2 (row iy: its nodes rowBegin[iy] .. rowEnd[iy] - 1, all
+// inside the disc): out = c0 w + c1 (4 neighbours of w) + d0 wp + d1 (4 neighbours of wp) + push
+// (+ px xs[m] + py y with Tilt, + field[m] with Field); returns the sum of out, and with Tilt sets sx, sy to
+// sum(xs out), sum(y out) (ys: y by row). A vector of nodes at a time along each row, the rest
+// one by one: the sums stay in vector lanes over every row and are added across the lanes once,
+// at the end (no row's own sum is formed).
 template <bool Tilt, bool Field>
-double updateRow(double* __restrict out, const double* __restrict w, const double* __restrict wp, const double* __restrict field,
-                 const double* __restrict xs, int n, int count, double c0, double c1, double d0, double d1, double push, double px,
-                 double& along)
+double updateRows(double* __restrict out, const double* __restrict w, const double* __restrict wp, const double* __restrict field,
+                  const double* __restrict xs, const double* __restrict ys, const int* __restrict rowBegin, const int* __restrict rowEnd,
+                  int n, double c0, double c1, double d0, double d1, double push, double px, double py, double& sx, double& sy)
 {
-    double sum = 0.0, moment = 0.0; // summed on the way (vector lanes)
-#pragma omp simd reduction(+ : sum, moment)
-    for (int m = 0; m < count; ++m)
+    constexpr int lanes = SNARESIM_VECTOR_BYTES / (int) sizeof(double);
+    using V = double __attribute__((vector_size(SNARESIM_VECTOR_BYTES)));
+    V vs = {}, vx = {}, vy = {};
+    double ts = 0.0, tx = 0.0, ty = 0.0;
+    for (int iy = 1; iy < n - 1; ++iy)
     {
-        const double nb = w[m - 1] + w[m + 1] + w[m - n] + w[m + n];
-        const double nbp = wp[m - 1] + wp[m + 1] + wp[m - n] + wp[m + n];
-        double next;
-        if constexpr (Tilt)
-            next = c0 * w[m] + c1 * nb + d0 * wp[m] + d1 * nbp + (push + px * xs[m]);
-        else
-            next = c0 * w[m] + c1 * nb + d0 * wp[m] + d1 * nbp + push;
-        if constexpr (Field)
-            next += field[m];
-        out[m] = next;
-        sum += next;
-        if constexpr (Tilt)
-            moment += xs[m] * next;
+        const int end = iy * n + rowEnd[iy];
+        const double y = ys[iy];
+        const double p = Tilt ? push + py * y : push;
+        int m = iy * n + rowBegin[iy];
+        for (; m + lanes <= end; m += lanes)
+        {
+            V c, l, r, u, d, cp, lp, rp, up, dp, x, next;
+            std::memcpy(&c, w + m, sizeof c);
+            std::memcpy(&l, w + m - 1, sizeof l);
+            std::memcpy(&r, w + m + 1, sizeof r);
+            std::memcpy(&u, w + m - n, sizeof u);
+            std::memcpy(&d, w + m + n, sizeof d);
+            std::memcpy(&cp, wp + m, sizeof cp);
+            std::memcpy(&lp, wp + m - 1, sizeof lp);
+            std::memcpy(&rp, wp + m + 1, sizeof rp);
+            std::memcpy(&up, wp + m - n, sizeof up);
+            std::memcpy(&dp, wp + m + n, sizeof dp);
+            const V nb = l + r + u + d;
+            const V nbp = lp + rp + up + dp;
+            if constexpr (Tilt)
+            {
+                std::memcpy(&x, xs + m, sizeof x);
+                next = c0 * c + c1 * nb + d0 * cp + d1 * nbp + (p + px * x);
+            }
+            else
+                next = c0 * c + c1 * nb + d0 * cp + d1 * nbp + p;
+            if constexpr (Field)
+            {
+                V f;
+                std::memcpy(&f, field + m, sizeof f);
+                next += f;
+            }
+            std::memcpy(out + m, &next, sizeof next);
+            vs += next;
+            if constexpr (Tilt)
+            {
+                vx += x * next;
+                vy += y * next;
+            }
+        }
+        for (; m < end; ++m)
+        {
+            const double nb = w[m - 1] + w[m + 1] + w[m - n] + w[m + n];
+            const double nbp = wp[m - 1] + wp[m + 1] + wp[m - n] + wp[m + n];
+            double next;
+            if constexpr (Tilt)
+                next = c0 * w[m] + c1 * nb + d0 * wp[m] + d1 * nbp + (p + px * xs[m]);
+            else
+                next = c0 * w[m] + c1 * nb + d0 * wp[m] + d1 * nbp + p;
+            if constexpr (Field)
+                next += field[m];
+            out[m] = next;
+            ts += next;
+            if constexpr (Tilt)
+            {
+                tx += xs[m] * next;
+                ty += y * next;
+            }
+        }
     }
-    along = moment;
-    return sum;
+    for (int lane = 0; lane < lanes; ++lane)
+    {
+        ts += vs[lane];
+        tx += vx[lane];
+        ty += vy[lane];
+    }
+    sx = tx;
+    sy = ty;
+    return ts;
 }
 
 // Eq. (22) in single precision over the whole padded grid, row after row without a break
