@@ -1,12 +1,12 @@
 // The membrane's hot loops (eq. 22 and what the couplings read and write on the grid),
 // compiled once per vector target by PerVectorTarget.inl: no include guard, no includes.
 
-// Eq. (22) over the disc's rows 1 .. n-2 (row iy: its nodes rowBegin[iy] .. rowEnd[iy] - 1, all
-// inside the disc): out = c0 w + c1 (4 neighbours of w) + d0 wp + d1 (4 neighbours of wp) + push
-// (+ px xs[m] + py y with Tilt, + field[m] with Field); returns the sum of out, and with Tilt sets sx, sy to
-// sum(xs out), sum(y out) (ys: y by row). A vector of nodes at a time along each row, the rest
-// one by one: the sums stay in vector lanes over every row and are added across the lanes once,
-// at the end (no row's own sum is formed).
+// Eq. (22) (the carry head's (23) alike) over the disc's rows 1 .. n-2, row iy holding the nodes
+// rowBegin[iy] .. rowEnd[iy] - 1, all inside the disc: out = c0 w + c1 (4 neighbours of w) + d0 wp
+// + d1 (4 neighbours of wp) + push (+ px xs[m] + py y with Tilt, + field[m] with Field). Returns
+// the sum of out, and with Tilt sets sx, sy to sum(xs out), sum(y out) (ys: y by row). A vector
+// of nodes at a time along each row, the rest one by one: the sums stay in vector lanes over
+// every row and are added across the lanes once, at the end (no row's own sum is formed).
 template <bool Tilt, bool Field>
 double updateRows(double* __restrict out, const double* __restrict w, const double* __restrict wp, const double* __restrict field,
                   const double* __restrict xs, const double* __restrict ys, const int* __restrict rowBegin, const int* __restrict rowEnd,
