@@ -70,7 +70,8 @@ Drum::Drum(const DrumConfig& config)
       mallets(contacts.get<MalletsOnBatter>().mallets), wires(contacts.get<SnaresOnCarry>().wires),
       snareCoupling(contacts.get<SnaresOnCarry>().coupling), engaged(contacts.get<SnaresOnCarry>().engaged),
       cavityCoupling(batterHead, carryHead, cavityAir), attachedAir(cfg, batterHead, carryHead, k),
-      pressureMics(cfg.mics, cfg.cavity, cfg.sampleRate_Hz, batterHead, carryHead), toHost(cfg.outputUp(), cfg.outputDown())
+      pressureMics(cfg.mics, cfg.cavity, cfg.sampleRate_Hz, batterHead, carryHead), room(cfg.room, cfg.sampleRate_Hz),
+      toHost(cfg.outputUp(), cfg.outputDown())
 {
     if (cfg.cavity.model == AirModel::airbox)
     {
@@ -172,6 +173,8 @@ void Drum::applyLive(const DrumConfig& next) noexcept
     snareCoupling.setLaw(n.snares.stiffness, n.snares.exponent, n.snares.contactDamping_s_per_m);
     cavityAir.setSpec(n.cavity, n.batter.radius_m);
     attachedAir.each([&](auto& air) { air.setSpec(n); });
+    if (n.room.reverberationTime_s != cfg.room.reverberationTime_s || n.room.volume_m3 != cfg.room.volume_m3)
+        room.setSpec(n.room); // runs the network's first passes: only when the room changes
     for (auto& m : mallets)
         m.setSpec(n.mallet); // a mallet in flight keeps its position; its patch changes at the next strike
     auto moved = [](const AirPoint& a, const AirPoint& b) { return a.x_m != b.x_m || a.y_m != b.y_m || a.z_m != b.z_m; };
@@ -415,6 +418,16 @@ double Drum::stepWith(Lap& lap)
     signals.top_Pa = boxMics ? boxAir.micPressure(0) : pressureMics.pressure(PressureMicrophones::top);
     signals.bottom_Pa = boxMics ? boxAir.micPressure(1) : pressureMics.pressure(PressureMicrophones::bottom);
     signals.room_Pa = boxMics ? boxAir.micPressure(2) : pressureMics.pressure(PressureMicrophones::room);
+    if (room.active())
+    {
+        // The room hears the drum as the room microphone does, brought to 1 m (the free field
+        // falls as 1 / r), and its diffuse field joins every microphone (DiffuseRoom.h).
+        const AirPoint& r = cfg.mics.room;
+        const auto diffuse = room.listen(signals.room_Pa * std::sqrt(r.x_m * r.x_m + r.y_m * r.y_m + r.z_m * r.z_m));
+        signals.top_Pa += diffuse[0];
+        signals.bottom_Pa += diffuse[1];
+        signals.room_Pa += diffuse[2];
+    }
     const auto& m = cfg.mics;
     signals.mix = cfg.outputGain * (m.mixTop * m.topGain * signals.top_Pa + m.mixBottom * m.bottomGain * signals.bottom_Pa +
                                     m.mixRoom * m.roomGain * signals.room_Pa);
@@ -482,6 +495,7 @@ void Drum::reset()
     ledger.clearValues();
     signals = {};
     pressureMics.clear();
+    room.clear();
     toHost.clear();
     hostPhase = lastPhase = 0;
     samplesRendered = 0;

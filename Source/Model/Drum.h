@@ -20,6 +20,7 @@
 #include "Attachments.h"
 #include "Cavity.h"
 #include "CavityCoupling.h"
+#include "DiffuseRoom.h"
 #include "DrumAir.h"
 #include "DrumConfig.h"
 #include "DrumSnapshot.h"
@@ -203,6 +204,7 @@ private:
     DrumAir boxAir; // component (the air box) with its couplings to the heads; inactive without
 
     PressureMicrophones pressureMics; // the microphones: a listener, no energy, no force
+    DiffuseRoom room;                 // the room's diffuse field at them: a listener too
     HostRateInterpolator toHost;      // the signals at the host's rate
     int hostPhase = 0, lastPhase = 0; // of the next and the last host sample, 0 .. L - 1
     EnergyLedger ledger;

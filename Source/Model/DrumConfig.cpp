@@ -202,6 +202,10 @@ void DrumConfig::validate() const
     for (double g : { mics.topGain, mics.bottomGain, mics.roomGain, mics.mixTop, mics.mixBottom, mics.mixRoom })
         require(std::isfinite(g), "microphone gains must be finite", g);
     require(std::isfinite(outputGain), "output gain must be finite", outputGain);
+    require(std::isfinite(room.reverberationTime_s) && room.reverberationTime_s >= 0.0 && room.reverberationTime_s <= 10.0,
+            "room reverberation time must be within 0..10 s", room.reverberationTime_s);
+    require(std::isfinite(room.volume_m3) && room.volume_m3 > 0.0 && room.volume_m3 <= 1e5, "room volume must be within 0..1e5 m^3",
+            room.volume_m3);
     if (cavity.model == AirModel::airbox)
         validateAirBox(*this);
 }
@@ -393,6 +397,8 @@ DrumConfig mapParametersAt(const ParameterSet& p, double sampleRate_Hz, double c
     c.mics.room = { d * std::sin(angle), 0.0, 0.5 * H + d * std::cos(angle) };
     c.mics.reach_m = spec(ParamId::micRoomDistance).maxValue + spec(ParamId::shellDepth).maxValue; // any position of the schema
     c.outputGain = std::pow(10.0, p.get(ParamId::outputGain) / 20.0);
+    c.room.reverberationTime_s = p.get(ParamId::roomTime);
+    c.room.volume_m3 = p.get(ParamId::roomVolume);
     return c;
 }
 } // namespace

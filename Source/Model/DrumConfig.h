@@ -14,6 +14,7 @@
 #include "NearFieldSpec.h"
 #include "OutsideAirSpec.h"
 #include "Parameters.h"
+#include "RoomSpec.h"
 #include "SnareSpec.h"
 
 #include <array>
@@ -55,6 +56,7 @@ struct DrumConfig
     DrumAirSpec airBox;     // used when cavity.model == AirModel::airbox
     OutsideAirSpec outside; // with the cavity or no air, not in the air box
     MicSpec mics;
+    RoomSpec room; // the room the microphones hear (DiffuseRoom.h)
     MalletSpec mallet;
     int numMallets = 4;                  // independent mallets for flams and rolls
     double strikeSpeedMax_m_per_s = 0.0; // MIDI velocity 127 (from the schema)

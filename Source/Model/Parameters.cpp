@@ -109,6 +109,12 @@ constexpr std::array<ParameterSpec, kNumParameters> kSpecs {{
     { P::snareStiffness, "snare_stiffness", "Snare contact stiffness", "N/m^beta", 1.0e6, 1.0e10, 1.0e9, S::logarithmic, N::coefficients,
       "Stiffness kappa_s of the snares' collisions with the carry head (eq. 16), with beta 1.5: the coiled wire's and the head's compliance where they meet; lower is a softer, longer contact with fewer clicks above 10 kHz",
       C, "", "snares" },
+    { P::roomTime, "room_time", "Room reverberation time", "s", 0.0, 2.0, 0.0, S::linear, N::coefficients,
+      "T60 of the room the drum is recorded in: its diffuse field (Sabine's level, Schroeder's random decay) joins every microphone; 0 is the free field, no room",
+      C, "", "output" },
+    { P::roomVolume, "room_volume", "Room volume", "m^3", 10.0, 2000.0, 60.0, S::logarithmic, N::coefficients,
+      "Volume of the room: with the reverberation time it sets how loud the room's diffuse field is beside the drum's direct sound (the critical distance 0.057 sqrt(V / T60))",
+      C, "", "output" },
 }};
 // clang-format on
 

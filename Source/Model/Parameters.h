@@ -70,6 +70,9 @@ enum class ParamId : std::size_t
     snareDamping,
     // the snares' contact stiffness (appended likewise)
     snareStiffness,
+    // the room (appended likewise)
+    roomTime,
+    roomVolume,
     count
 };
 

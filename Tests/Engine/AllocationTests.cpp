@@ -35,6 +35,7 @@ TEST_CASE("strikes, steps, the snares switch and reset allocate nothing, with th
     DrumConfig cfg = test::wholeDrum();
     cfg.snares.scheme = GENERATE(CollisionScheme::newton, CollisionScheme::quadratised);
     const bool profiled = GENERATE(false, true); // the step profile (StepProfile.h) on or off
+    cfg.room = { 0.4, 60.0 };                    // the room's diffuse field (DiffuseRoom.h) with them
     Drum drum(cfg);
     drum.setEnergyTracking(true);
     drum.setProfiling(profiled);
@@ -52,6 +53,12 @@ TEST_CASE("strikes, steps, the snares switch and reset allocate nothing, with th
                 drum.playNote(33, 100); // snares off
             if (n == 1800)
                 drum.playNote(34, 100); // snares on
+            if (n == 2400)
+            {
+                DrumConfig larger = cfg;
+                larger.room = { 1.2, 400.0 }; // a new room, played live
+                drum.applyLive(larger);
+            }
             sum += drum.step();
             copy = drum.energy(); // as the renderer keeps every sample's ledger
             sum += copy.balance();
