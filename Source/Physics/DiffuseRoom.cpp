@@ -1,16 +1,17 @@
 #include "DiffuseRoom.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 namespace snaresim
 {
 namespace
 {
-// The lines' lengths at 48 kHz (samples; mutually prime), scaled to the rate.
+// The lines' lengths at 48 kHz (samples, primes: no common period), scaled to the rate.
 constexpr std::array<int, DiffuseRoom::kLines> kLengthsAt48k { 887, 1049, 1223, 1367, 1543, 1709, 1871, 2029 };
 // Row i of the 8 x 8 Hadamard matrix (Sylvester) at column j: -1 where i & j has odd parity.
-constexpr double hadamard(int i, int j) { return (__builtin_popcount((unsigned) (i & j)) & 1) != 0 ? -1.0 : 1.0; }
+constexpr double hadamard(int i, int j) { return (std::popcount((unsigned) (i & j)) & 1) != 0 ? -1.0 : 1.0; }
 constexpr int kInputRow = 4;                                             // the source in
 constexpr std::array<int, DiffuseRoom::kOutputs> kOutputRow { 1, 2, 3 }; // the microphones out
 constexpr double kLowT60 = 1.3, kHighT60 = 0.8;                          // of T60: the decay at low and at the highest frequencies
