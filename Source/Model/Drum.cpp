@@ -173,7 +173,7 @@ void Drum::applyLive(const DrumConfig& next) noexcept
     snareCoupling.setLaw(n.snares.stiffness, n.snares.exponent, n.snares.contactDamping_s_per_m);
     cavityAir.setSpec(n.cavity, n.batter.radius_m);
     attachedAir.each([&](auto& air) { air.setSpec(n); });
-    if (n.room.reverberationTime_s != cfg.room.reverberationTime_s || n.room.volume_m3 != cfg.room.volume_m3)
+    if (n.room != cfg.room)
         room.setSpec(n.room); // runs the network's first passes: only when the room changes
     for (auto& m : mallets)
         m.setSpec(n.mallet); // a mallet in flight keeps its position; its patch changes at the next strike

@@ -87,17 +87,15 @@ Membrane::Membrane(const MembraneSpec& s, double timeStep, double reserve, doubl
             xs[i] = g.mask()[i] * g.x(ix);
             ys[i] = g.mask()[i] * g.x(iy);
         }
+    dRowScratch.assign(blockSumsScratch(n), 0.0);
+    accScratch.assign((size_t) n * (size_t) n, 0.0); // up to n bands of n columns
     if (single)
     {
-        dRowScratch.assign(blockSumsScratch(n), 0.0);
-        accScratch.assign((size_t) n * (size_t) n, 0.0); // up to n bands of n columns
         fX.assign(xs.begin(), xs.end(), n);
         fY.assign(ys.begin(), ys.end(), n);
     }
     else
     {
-        dRowScratch.assign(blockSumsScratch(n), 0.0);
-        accScratch.assign((size_t) n * (size_t) n, 0.0); // up to n bands of n columns
         dX = std::move(xs);
         dY = std::move(ys);
     }

@@ -9,6 +9,7 @@ struct RoomSpec
 {
     double reverberationTime_s = 0.0; // T60 at middle frequencies (from the schema); 0: no room, the free field
     double volume_m3 = 60.0;          // the room's volume (from the schema)
+    bool operator==(const RoomSpec&) const = default;
 };
 
 } // namespace snaresim
