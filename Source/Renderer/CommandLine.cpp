@@ -847,7 +847,8 @@ Matching a recording:
                         velocity; the others keep their start values (velocity 100).
                         Default: batter_tension, carry_tension, damping, high_damping,
                         snare_tension, snare_count, strike_position, mallet_mass,
-                        mallet_stiffness, mic_top, mic_bottom, mic_room, velocity
+                        mallet_stiffness, mic_top, mic_bottom, mic_room, room_time,
+                        room_volume, velocity
                         (with --set snares_engaged=off, not the two snare ones)
   --match-budget N      renders the match may use, 12..100000 (default )" +
            std::to_string(kDefaultMatchBudget) + R"()

@@ -18,6 +18,7 @@
 #include <juce_core/juce_core.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -459,12 +460,51 @@ std::optional<PresetStart> nearestPresetStart(const RenderJob& job, const Parame
     return nearest;
 }
 
+// The room a recording was made in, as a start: with the room's two parameters searched and the
+// start in the free field, the start struck in a few rooms (T60 by volume; the field's level
+// falls with the volume, r_c = 0.057 sqrt(V / T60)) and in the free field, and the nearest taken.
+// A room changes what the microphones hear of the same strike, so these strikes differ by the
+// room alone; from the free field the search would not find one, as a room's volume changes
+// nothing there and its first step in T60 (a quarter second in 60 m^3) lies far off.
+struct RoomStart
+{
+    double time_s = 0.0;
+    double volume_m3 = 0.0;
+    int renders = 0;
+};
+
+RoomStart nearestRoomStart(const ParameterSet& start, double rate, const StrikeSignature& recording)
+{
+    constexpr std::array<double, 3> times { 0.15, 0.3, 0.6 };
+    constexpr std::array<double, 3> volumes { 60.0, 350.0, 2000.0 };
+    std::vector<Candidate> strikes { { start, kMatchFixedVelocity } };
+    for (const double t : times)
+        for (const double v : volumes)
+        {
+            ParameterSet p = start;
+            p.set(ParamId::roomTime, t);
+            p.set(ParamId::roomVolume, v);
+            strikes.push_back({ p, kMatchFixedVelocity });
+        }
+    const auto results = evaluateAll(strikes, rate, recording);
+    RoomStart best { start.get(ParamId::roomTime), start.get(ParamId::roomVolume), (int) strikes.size() };
+    double nearest = 1e300;
+    for (std::size_t j = 0; j < strikes.size(); ++j)
+        if (results[j].terms && results[j].terms->strike_dB < nearest)
+        {
+            nearest = results[j].terms->strike_dB;
+            best.time_s = strikes[j].params.get(ParamId::roomTime);
+            best.volume_m3 = strikes[j].params.get(ParamId::roomVolume);
+        }
+    return best;
+}
+
 } // namespace
 
 std::string defaultMatchParams()
 {
     return "batter_tension,carry_tension,damping,high_damping,snare_tension,snare_count,strike_position,mallet_mass,"
-           "mallet_stiffness,mic_top,mic_bottom,mic_room,velocity";
+           "mallet_stiffness,mic_top,mic_bottom,mic_room,room_time,room_volume,velocity";
 }
 
 int runMatch(const RenderJob& job)
@@ -533,7 +573,17 @@ int runMatch(const RenderJob& job)
     if (! job.preset && ! job.matchParams && budget >= kPresetStartBudget)
         if ((presetStart = nearestPresetStart(job, start, rate, recording)))
             start = presetStart->params;
-    const int startRenders = presetStart ? presetStart->renders : 0;
+    int startRenders = presetStart ? presetStart->renders : 0;
+    auto searched = [&](ParamId id) {
+        return std::any_of(coordinates.begin(), coordinates.end(), [id](const MatchCoordinate& c) { return c.id == id; });
+    };
+    if (searched(ParamId::roomTime) && searched(ParamId::roomVolume) && start.get(ParamId::roomTime) == 0.0 && budget >= kPresetStartBudget)
+    {
+        const auto room = nearestRoomStart(start, rate, recording);
+        start.set(ParamId::roomTime, room.time_s);
+        start.set(ParamId::roomVolume, room.volume_m3);
+        startRenders += room.renders;
+    }
     MatchObjective objective(recording, rate, start, coordinates, progress);
 
     // The search, then the finalists each struck twice more (velocity -4 and +4): the chaotic

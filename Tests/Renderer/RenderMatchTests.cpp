@@ -284,7 +284,9 @@ TEST_CASE("match: the default parameters searched, without the snare ones when t
         for (const auto& id : *json["matched"].getArray())
             matched.add(id.toString());
         INFO(matched.joinIntoString(","));
-        CHECK(matched.size() == (snaresOff ? 11 : 13));
+        CHECK(matched.size() == (snaresOff ? 13 : 15));
+        CHECK(matched.contains("room_time"));
+        CHECK(matched.contains("room_volume"));
         CHECK(matched.contains("snare_tension") == ! snaresOff);
         CHECK(matched.contains("snare_count") == ! snaresOff);
         CHECK(matched.contains("velocity"));
@@ -325,6 +327,38 @@ TEST_CASE("match: without --preset and --match-params the search starts from the
         CHECK(j["start_preset"].isVoid());
         CHECK(parameterOf(j, "shell_depth") == Approx(0.14));
     }
+}
+
+TEST_CASE("match: a strike heard in a room starts from the nearest of a few rooms", "[renderer][match][slow]")
+{
+    // Piccolo in a room of 350 m^3 with T60 0.3 s (one of the rooms tried) as the recording: the
+    // start is Piccolo in that room, 0 dB away; in the free field it would lie dBs away.
+    TempDir dir;
+    const auto recording = (dir.in() / "room.wav").string();
+    REQUIRE(runRenderer({ "-o", recording, "--preset", "Piccolo", "--hit", "0:100", "--seconds", "1", "--set", "room_time=0.3", "--set",
+                          "room_volume=350" },
+                        dir.root() / "capture")
+                .exitCode == 0);
+    const auto preset = (dir.out() / "m.snarepreset").string();
+    const auto run = runRenderer(
+        { "--match", recording, "-o", preset, "--match-budget", std::to_string(snaresim::render::kPresetStartBudget), "--json" },
+        dir.root() / "capture");
+    INFO("stderr: " << run.err);
+    REQUIRE(run.exitCode == 0);
+    const auto json = parseJson(run.out);
+    CHECK(json["start_preset"].toString() == "Piccolo");
+    CHECK((double) json["start_preset_distance_db"] > 1.0); // Piccolo in the free field
+    CHECK((double) json["strike_distance_db"] < 0.1);
+    CHECK(parameterOf(json, "room_time") == Approx(0.3));
+    CHECK(parameterOf(json, "room_volume") == Approx(350.0));
+    CHECK((int) json["renders"] <= snaresim::render::kPresetStartBudget);
+
+    // The room's parameters not searched: the free field stays.
+    const auto without = runRenderer({ "--match", recording, "-o", preset, "--match-budget", "60", "--json", "--preset", "Piccolo",
+                                       "--match-params", "damping,velocity" },
+                                     dir.root() / "capture");
+    REQUIRE(without.exitCode == 0);
+    CHECK(parameterOf(parseJson(without.out), "room_time") == 0.0);
 }
 
 TEST_CASE("match: the summary, the JSON and the preset file carry the whole-strike distance", "[renderer][match]")
