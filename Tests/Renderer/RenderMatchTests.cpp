@@ -295,6 +295,20 @@ TEST_CASE("match: the default parameters searched, without the snare ones when t
     }
 }
 
+namespace
+{
+// The default command with the smallest budget that starts from the nearest factory preset: its JSON.
+juce::var matchWithPresetStart(const TempDir& dir, const std::string& recording, const std::string& preset)
+{
+    const auto run = runRenderer(
+        { "--match", recording, "-o", preset, "--match-budget", std::to_string(snaresim::render::kPresetStartBudget), "--json" },
+        dir.root() / "capture");
+    INFO("stderr: " << run.err);
+    REQUIRE(run.exitCode == 0);
+    return parseJson(run.out);
+}
+} // namespace
+
 TEST_CASE("match: without --preset and --match-params the search starts from the nearest factory preset", "[renderer][match][slow]")
 {
     // A strike of Piccolo as the recording: of the factory presets, Piccolo's own strike lies at 0 dB.
@@ -303,12 +317,7 @@ TEST_CASE("match: without --preset and --match-params the search starts from the
     REQUIRE(runRenderer({ "-o", recording, "--preset", "Piccolo", "--hit", "0:100", "--seconds", "1" }, dir.root() / "capture").exitCode ==
             0);
     const auto preset = (dir.out() / "m.snarepreset").string();
-    const auto run = runRenderer(
-        { "--match", recording, "-o", preset, "--match-budget", std::to_string(snaresim::render::kPresetStartBudget), "--json" },
-        dir.root() / "capture");
-    INFO("stderr: " << run.err);
-    REQUIRE(run.exitCode == 0);
-    const auto json = parseJson(run.out);
+    const auto json = matchWithPresetStart(dir, recording, preset);
     CHECK(json["start_preset"].toString() == "Piccolo");
     CHECK((double) json["start_preset_distance_db"] < 0.1);
     CHECK((double) json["strike_distance_db"] < 0.1); // the search keeps the start when nothing beats it
@@ -340,12 +349,7 @@ TEST_CASE("match: a strike heard in a room starts from the nearest of a few room
                         dir.root() / "capture")
                 .exitCode == 0);
     const auto preset = (dir.out() / "m.snarepreset").string();
-    const auto run = runRenderer(
-        { "--match", recording, "-o", preset, "--match-budget", std::to_string(snaresim::render::kPresetStartBudget), "--json" },
-        dir.root() / "capture");
-    INFO("stderr: " << run.err);
-    REQUIRE(run.exitCode == 0);
-    const auto json = parseJson(run.out);
+    const auto json = matchWithPresetStart(dir, recording, preset);
     CHECK(json["start_preset"].toString() == "Piccolo");
     CHECK((double) json["start_preset_distance_db"] > 1.0); // Piccolo in the free field
     CHECK((double) json["strike_distance_db"] < 0.1);
