@@ -5,9 +5,9 @@
 #   bash scripts/bootstrap.sh test      # build everything, run the short benchmark (prints its JSON
 #                                       # line; never fails on time), then the whole test suite (ctest,
 #                                       # a test per core at a time)
-#   bash scripts/bootstrap.sh sanitize  # a second build with clang, AddressSanitizer and UBSan in
-#                                       # build-asan/, then the suite there but the tests
-#                                       # labelled slow (the corner test does run)
+#   bash scripts/bootstrap.sh sanitize  # a second build of the tests with clang, AddressSanitizer
+#                                       # and UBSan in build-asan/, then the suite there but the
+#                                       # tests labelled slow (the corner test does run)
 #   bash scripts/bootstrap.sh fuzz      # the libFuzzer targets of that build, FUZZ_SECONDS (30) each
 #
 # Safe to rerun: packages are installed only when missing, and the build in build/ only redoes
@@ -141,15 +141,24 @@ case "$mode" in
         ctest --test-dir "$build_dir" --output-on-failure -j "$jobs"
         ;;
     sanitize)
-        log "building everything with the sanitizers"
-        cmake --build "$build_dir" -j "$jobs"
+        # What the tests below run: the test programs, the renderer they call and the fuzzers
+        # (their seed corpora are tests). Not the plug-in's formats, their hosting tests, the
+        # golden tests or the lab: those run in the release suite only.
+        targets=(engine_tests renderer_tests command_line_tests match_tests host_rate_tests
+                 strike_distance_tests snaresim_plugin_tests snaresim_multi_instance_bench
+                 snaresim_editor_screenshot snaresim-render
+                 fuzz_state fuzz_midi_input fuzz_command_line fuzz_midi_file)
+        log "building the tests with the sanitizers"
+        cmake --build "$build_dir" --target "${targets[@]}" -j "$jobs"
         log "running the tests under AddressSanitizer and UndefinedBehaviorSanitizer"
         # Two at a time: the instrumented physics is slow, and every test works in its own folder.
         # The tests labelled slow (long renders and mode fits that repeat the code paths of
         # shorter tests) run in the release suite only; the corner test does run here, on every
-        # core, with rolls of 0.13 s, three strikes (2 s in the release suite; it prints the length).
+        # core, with rolls of 0.13 s, three strikes, and 50 random combinations (1 s and 200 in
+        # the release suite; it prints what it used).
         ctest --test-dir "$build_dir" --output-on-failure -j "$jobs" -LE slow
         SNARESIM_CORNER_SECONDS="${SNARESIM_CORNER_SECONDS:-0.13}" \
+            SNARESIM_CORNER_COMBINATIONS="${SNARESIM_CORNER_COMBINATIONS:-50}" \
             ctest --test-dir "$build_dir" --output-on-failure -R "parameter at its limits"
         ;;
     fuzz)

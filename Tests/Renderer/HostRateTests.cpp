@@ -216,7 +216,7 @@ std::vector<double> inHostBand(const std::vector<double>& simulated)
 
 TEST_CASE(
     "host rate: strikes at 44.1 to 192 kHz have the features of the strike at the simulated rate, within their just-noticeable differences",
-    "[rate]")
+    "[rate][slow]")
 {
     // The centroid and the falls within 5 % (ISO 3382-1 Annex A for decay times), each band
     // share within one point: as the vector targets and the single-precision heads are held.

@@ -140,23 +140,24 @@ TEST_CASE("a MIDI file of 100 000 notes renders with a progress line on a termin
     writeMidi(many, 100000); // 100 s of notes, one every millisecond
     writeMidi(few, 1000);    // the first second of them
 
-    // On a terminal: the progress line, then the summary on stdout. 400 s of audio, so that
+    // On a terminal: the progress line, then the summary on stdout. 200 s of audio, so that
     // the render surely takes longer than the line's delay (2 s) on any machine.
-    const auto run = runOnTerminal(cheap({ "-o", (dir.out() / "many.wav").string(), "--midi", many.string(), "--seconds", "400" }),
+    const auto run = runOnTerminal(cheap({ "-o", (dir.out() / "many.wav").string(), "--midi", many.string(), "--seconds", "200" }),
                                    dir.root() / "stdout.txt");
     INFO("terminal: " << run.terminal);
     REQUIRE(run.exitCode == 0);
     const auto wav = readWav(dir.out() / "many.wav");
     REQUIRE(wav.opened);
-    CHECK(wav.length == 400LL * 16000);
+    CHECK(wav.length == 200LL * 16000);
     CHECK(run.terminal.find("\rsnaresim-render: ") != std::string::npos);
     CHECK(run.terminal.find("s of audio") != std::string::npos);
     CHECK(run.terminal.find("100%") != std::string::npos);
     CHECK(run.out.find("strikes") != std::string::npos);
 
-    // The same on a terminal with --json: no progress, stdout is one JSON object.
+    // The same on a terminal with --json, just past the last note: no progress, stdout is one
+    // JSON object.
     const auto quiet =
-        runOnTerminal(cheap({ "-o", (dir.out() / "many-json.wav").string(), "--midi", many.string(), "--seconds", "400", "--json" }),
+        runOnTerminal(cheap({ "-o", (dir.out() / "many-json.wav").string(), "--midi", many.string(), "--seconds", "101", "--json" }),
                       dir.root() / "stdout-json.txt");
     CHECK(quiet.exitCode == 0);
     CHECK(quiet.terminal.find("snaresim-render") == std::string::npos);
@@ -165,11 +166,11 @@ TEST_CASE("a MIDI file of 100 000 notes renders with a progress line on a termin
     // Stderr on a pipe: nothing on it. And the memory: the 100 000 notes against 1 000 notes
     // rendered for as long, and those against a render a tenth as long.
     RunResult manyRun, fewRun, shortRun;
-    const long manyRss = peakRssOfRun(cheap({ "-o", (dir.out() / "a.wav").string(), "--midi", many.string(), "--seconds", "400" }),
+    const long manyRss = peakRssOfRun(cheap({ "-o", (dir.out() / "a.wav").string(), "--midi", many.string(), "--seconds", "200" }),
                                       dir.root() / "capture", manyRun);
-    const long fewRss = peakRssOfRun(cheap({ "-o", (dir.out() / "b.wav").string(), "--midi", few.string(), "--seconds", "400" }),
+    const long fewRss = peakRssOfRun(cheap({ "-o", (dir.out() / "b.wav").string(), "--midi", few.string(), "--seconds", "200" }),
                                      dir.root() / "capture", fewRun);
-    const long shortRss = peakRssOfRun(cheap({ "-o", (dir.out() / "c.wav").string(), "--midi", few.string(), "--seconds", "40" }),
+    const long shortRss = peakRssOfRun(cheap({ "-o", (dir.out() / "c.wav").string(), "--midi", few.string(), "--seconds", "20" }),
                                        dir.root() / "capture", shortRun);
     REQUIRE(manyRun.exitCode == 0);
     REQUIRE(fewRun.exitCode == 0);
@@ -178,11 +179,11 @@ TEST_CASE("a MIDI file of 100 000 notes renders with a progress line on a termin
     CHECK(fewRun.err.empty());
 
     // The output is streamed to disk: ten times the length costs no memory to speak of (the
-    // 400 s of audio would be 25.6 MB held). The notes cost their list and the MIDI reader's
+    // 200 s of audio would be 12.8 MB held). The notes cost their list and the MIDI reader's
     // copy of the file's events (juce::MidiFile: about 220 bytes a note): 400 bytes a note at most.
     CHECK(fewRss - shortRss < 2 * 1024);
     CHECK(manyRss - fewRss < 100000 * 400 / 1024);
-    snaresim::test::report() << "100 000-note MIDI file: 400 s of audio at 16 kHz rendered with a progress line on a terminal; peak RSS "
+    snaresim::test::report() << "100 000-note MIDI file: 200 s of audio at 16 kHz rendered with a progress line on a terminal; peak RSS "
                              << manyRss / 1024 << " MB (1 000 notes for as long: " << fewRss / 1024
                              << " MB; a tenth as long: " << shortRss / 1024 << " MB)\n";
 }
