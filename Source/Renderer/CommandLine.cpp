@@ -830,17 +830,19 @@ Matching a recording:
                         recording's sample rate (48 kHz outside 32..96 kHz). The search:
                         the start (the defaults, --preset, --set; without --preset and
                         --match-params, and with a budget of 60 or more, the factory
-                        preset whose strike lies nearest the recording, --set over it)
-                        and a Latin hypercube,
-                        then a compass search; the three best struck again at velocity -4
-                        and +4, the best mean wins. Prints the best distance as it goes
+                        preset whose strike lies nearest the recording, --set over it;
+                        with 300 or more, a second search from the second-nearest, half
+                        the budget each) and a Latin hypercube, then a compass search;
+                        the three best of all struck again at velocity -4 and +4, the
+                        best mean wins. Prints the best distance as it goes
                         (stderr; one line in place on a terminal), then the match's
                         whole-strike distance to the recording (dB), the parameters and
                         the features of recording and match (--json: one object with
                         "parameters", every ID to its value, "distance",
                         "strike_distance_db", "velocity", "terms", the features,
-                        "start_preset" and "start_preset_distance_db" (null without a
-                        preset start), "renders", "wall_seconds"). Not a strike
+                        "start_preset" and "start_preset_distance_db" (the match's start;
+                        null without a preset start), "start_presets" (each search's),
+                        "renders", "wall_seconds"). Not a strike
                         (unreadable, silent, shorter than 100 ms, no 20 dB fall): exit 2.
   --match-params LIST   the comma-separated parameter IDs to search (continuous or whole
                         numbers; not output_gain), "velocity" for the strike's MIDI

@@ -278,6 +278,10 @@ public:
 
     const Evaluation& evaluation(const Candidate& c) const { return cache.at(c.key()); }
 
+    // Another search's start: the points of the unit cube map onto it from now on (the cache and
+    // the cost go on).
+    void setStart(const ParameterSet& params) { start = params; }
+
     int cost() const override { return renders; }
 
 private:
@@ -302,8 +306,9 @@ struct MatchResult
     StrikeFeatures features; // the chosen strike's
     int renders = 0;
     double wallSeconds = 0.0;
-    std::string startPreset;     // the factory preset the search started from, if it chose one
-    double startPreset_dB = 0.0; // and its strike's whole-strike distance
+    std::string startPreset;               // the factory preset the chosen strike's search started from, if it chose one
+    double startPreset_dB = 0.0;           // and its strike's whole-strike distance
+    std::vector<std::string> startPresets; // every factory preset a search started from, nearest first
 };
 
 std::string optionalText(const std::optional<double>& v, const char* format) { return v ? formatted(format, *v) : "n/a"; }
@@ -348,6 +353,10 @@ std::string formatJson(const RenderJob& job, const std::vector<MatchCoordinate>&
     root->setProperty("terms", juce::var(terms));
     root->setProperty("start_preset", r.startPreset.empty() ? juce::var() : juce::var(juce::String(r.startPreset)));
     root->setProperty("start_preset_distance_db", r.startPreset.empty() ? juce::var() : juce::var(r.startPreset_dB));
+    juce::Array<juce::var> startPresets;
+    for (const auto& name : r.startPresets)
+        startPresets.add(juce::String(name));
+    root->setProperty("start_presets", startPresets);
     root->setProperty("renders", r.renders);
     root->setProperty("wall_seconds", r.wallSeconds);
     root->setProperty("sample_rate_hz", r.features.sampleRate_Hz);
@@ -369,6 +378,9 @@ std::string formatSummary(const RenderJob& job, const std::vector<MatchCoordinat
         std::snprintf(line, sizeof line, "  started from the factory preset %s (whole-strike distance %.2f dB)\n", r.startPreset.c_str(),
                       r.startPreset_dB);
         s += line;
+        for (const auto& other : r.startPresets)
+            if (other != r.startPreset)
+                s += "  (another search started from " + other + ")\n";
     }
     std::snprintf(line, sizeof line, "  %-22s %16s %16s\n", "parameter", "start", "match");
     s += line;
@@ -421,9 +433,10 @@ void checkMatchOptions(const RenderJob& job)
         throw UserError(std::string(option) + " cannot be used with --match (see --help)");
 }
 
-// The factory preset whose strike (kMatchFixedVelocity) lies nearest the recording by the
-// whole-strike distance, among those with the snares as `start` has them, with --model and --set
-// over it as over any preset. Empty when none renders.
+// The factory presets ranked by how near their strikes (kMatchFixedVelocity) lie to the recording
+// by the whole-strike distance, among those with the snares as `start` has them, with --model and
+// --set over each as over any preset; nearest first (renders: the strikes this took). Empty when
+// none renders.
 struct PresetStart
 {
     std::string name;
@@ -432,8 +445,7 @@ struct PresetStart
     int renders = 0;
 };
 
-std::optional<PresetStart> nearestPresetStart(const RenderJob& job, const ParameterSet& start, double rate,
-                                              const StrikeSignature& recording)
+std::vector<PresetStart> nearestPresetStarts(const RenderJob& job, const ParameterSet& start, double rate, const StrikeSignature& recording)
 {
     std::vector<PresetStart> presets;
     for (const auto& preset : factoryPresets())
@@ -448,16 +460,16 @@ std::optional<PresetStart> nearestPresetStart(const RenderJob& job, const Parame
     for (const auto& preset : presets)
         strikes.push_back({ preset.params, kMatchFixedVelocity });
     const auto results = evaluateAll(strikes, rate, recording);
-    std::optional<PresetStart> nearest;
+    std::vector<PresetStart> ranked;
     for (std::size_t j = 0; j < presets.size(); ++j)
-        if (results[j].terms && (! nearest || results[j].terms->strike_dB < nearest->strike_dB))
+        if (results[j].terms)
         {
-            nearest = presets[j];
-            nearest->strike_dB = results[j].terms->strike_dB;
+            ranked.push_back(presets[j]);
+            ranked.back().strike_dB = results[j].terms->strike_dB;
+            ranked.back().renders = (int) presets.size();
         }
-    if (nearest)
-        nearest->renders = (int) presets.size();
-    return nearest;
+    std::stable_sort(ranked.begin(), ranked.end(), [](const PresetStart& a, const PresetStart& b) { return a.strike_dB < b.strike_dB; });
+    return ranked;
 }
 
 // The room a recording was made in, as a start: with the room's two parameters searched and the
@@ -568,36 +580,61 @@ int runMatch(const RenderJob& job)
 
     // A recording's drum lies nearer one of the factory presets than the defaults: without
     // --preset and --match-params the search starts from the nearest (what it does not search,
-    // such as a felt mallet's exponent, comes with it).
-    std::optional<PresetStart> presetStart;
+    // such as a felt mallet's exponent, comes with it); with kSecondStartBudget, another from the
+    // second-nearest.
+    std::vector<PresetStart> presetStarts;
     if (! job.preset && ! job.matchParams && budget >= kPresetStartBudget)
-        if ((presetStart = nearestPresetStart(job, start, rate, recording)))
-            start = presetStart->params;
-    int startRenders = presetStart ? presetStart->renders : 0;
+        presetStarts = nearestPresetStarts(job, start, rate, recording);
+    presetStarts.resize(std::min<std::size_t>(presetStarts.size(), budget >= kSecondStartBudget ? 2 : 1));
+    int startRenders = presetStarts.empty() ? 0 : presetStarts.front().renders;
+    std::vector<ParameterSet> starts;
+    for (const auto& p : presetStarts)
+        starts.push_back(p.params);
+    if (starts.empty())
+        starts.push_back(start);
     auto searched = [&](ParamId id) {
         return std::any_of(coordinates.begin(), coordinates.end(), [id](const MatchCoordinate& c) { return c.id == id; });
     };
-    if (searched(ParamId::roomTime) && searched(ParamId::roomVolume) && start.get(ParamId::roomTime) == 0.0 && budget >= kPresetStartBudget)
-    {
-        const auto room = nearestRoomStart(start, rate, recording);
-        start.set(ParamId::roomTime, room.time_s);
-        start.set(ParamId::roomVolume, room.volume_m3);
-        startRenders += room.renders;
-    }
-    MatchObjective objective(recording, rate, start, coordinates, progress);
+    MatchObjective objective(recording, rate, starts.front(), coordinates, progress);
 
-    // The search, then the finalists each struck twice more (velocity -4 and +4): the chaotic
-    // snares make one strike's distance noisy, the mean of three is the one that decides.
-    SearchSettings settings;
-    settings.budget = budget - 2 * kMatchFinalists - startRenders;
-    settings.seed = (std::uint64_t) job.matchSeed.value_or(kDefaultMatchSeed);
-    const auto ranked = searchMinimum(objective.startPoint(), objective, settings, kMatchFinalists);
+    // Each search, then the finalists of all each struck twice more (velocity -4 and +4): the
+    // chaotic snares make one strike's distance noisy, the mean of three is the one that decides.
+    struct Finalist
+    {
+        Candidate candidate;
+        double distance = 0.0;
+        std::size_t start = 0;
+    };
+    std::vector<Finalist> finalists;
+    const int searchesBudget = budget - 2 * kMatchFinalists - startRenders;
+    for (std::size_t i = 0; i < starts.size(); ++i)
+    {
+        int roomRenders = 0;
+        if (searched(ParamId::roomTime) && searched(ParamId::roomVolume) && starts[i].get(ParamId::roomTime) == 0.0 &&
+            budget >= kPresetStartBudget)
+        {
+            const auto room = nearestRoomStart(starts[i], rate, recording);
+            starts[i].set(ParamId::roomTime, room.time_s);
+            starts[i].set(ParamId::roomVolume, room.volume_m3);
+            roomRenders = room.renders;
+        }
+        startRenders += roomRenders;
+        objective.setStart(starts[i]);
+        SearchSettings settings;
+        settings.budget = searchesBudget / (int) starts.size() - roomRenders;
+        settings.seed = (std::uint64_t) job.matchSeed.value_or(kDefaultMatchSeed);
+        for (const auto& point : searchMinimum(objective.startPoint(), objective, settings, kMatchFinalists))
+            finalists.push_back({ objective.candidateAt(point.point), point.distance, i });
+    }
+    std::stable_sort(finalists.begin(), finalists.end(), [](const Finalist& a, const Finalist& b) { return a.distance < b.distance; });
+    finalists.resize(std::min<std::size_t>(finalists.size(), kMatchFinalists));
 
     MatchResult result;
     double bestMean = 1e300;
-    for (const auto& finalist : ranked)
+    std::size_t chosenStart = 0;
+    for (const auto& finalist : finalists)
     {
-        const auto candidate = objective.candidateAt(finalist.point);
+        const auto& candidate = finalist.candidate;
         std::vector<Candidate> strikes { candidate, candidate, candidate };
         strikes[1].velocity = std::max(1, candidate.velocity - 4);
         strikes[2].velocity = std::min(127, candidate.velocity + 4);
@@ -607,8 +644,10 @@ int runMatch(const RenderJob& job)
         {
             bestMean = mean;
             result.match = candidate;
+            chosenStart = finalist.start;
         }
     }
+    start = starts[chosenStart];
     progress.finish();
     const auto& chosen = objective.evaluation(result.match);
     if (! chosen.signature || ! chosen.terms)
@@ -618,10 +657,12 @@ int runMatch(const RenderJob& job)
     result.terms = *chosen.terms;
     result.features = chosen.signature->features;
     result.renders = objective.cost() + startRenders;
-    if (presetStart)
+    if (! presetStarts.empty())
     {
-        result.startPreset = presetStart->name;
-        result.startPreset_dB = presetStart->strike_dB;
+        result.startPreset = presetStarts[chosenStart].name;
+        result.startPreset_dB = presetStarts[chosenStart].strike_dB;
+        for (const auto& p : presetStarts)
+            result.startPresets.push_back(p.name);
     }
 
     // The preset file: a comment that says what it is, then the parameters.

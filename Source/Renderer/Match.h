@@ -23,6 +23,10 @@ inline constexpr int kDefaultMatchSeed = 20240611; // --match-seed
 // Without --preset and --match-params, and with at least this budget, the search starts from the
 // factory preset whose strike lies nearest the recording (its renders count in the budget).
 inline constexpr int kPresetStartBudget = 60;
+// With at least this budget, a second search starts from the second-nearest factory preset and
+// each has half of what is left: the nearest preset by one strike is not always the basin of the
+// best match (what is not searched, such as the mallet's felt and the shell, comes with it).
+inline constexpr int kSecondStartBudget = 300;
 
 // The default --match-params (velocity: the strike's MIDI velocity, searched with them); with
 // the snares off at the start, snare_tension and snare_count are left out.

@@ -99,7 +99,7 @@ struct ReferenceSpec
     std::string text;    // as typed, for messages
 };
 
-inline constexpr int kDefaultMatchBudget = 400; // --match-budget: renders
+inline constexpr int kDefaultMatchBudget = 800; // --match-budget: renders (two searches of about 390)
 inline constexpr int kMinMatchBudget = 12;
 inline constexpr int kMaxMatchBudget = 100000;
 

@@ -297,19 +297,20 @@ TEST_CASE("match: the default parameters searched, without the snare ones when t
 
 namespace
 {
-// The default command with the smallest budget that starts from the nearest factory preset: its JSON.
-juce::var matchWithPresetStart(const TempDir& dir, const std::string& recording, const std::string& preset)
+// The default command with a budget (by default the smallest that starts from the nearest factory
+// preset): its JSON.
+juce::var matchWithPresetStart(const TempDir& dir, const std::string& recording, const std::string& preset,
+                               int budget = snaresim::render::kPresetStartBudget)
 {
-    const auto run = runRenderer(
-        { "--match", recording, "-o", preset, "--match-budget", std::to_string(snaresim::render::kPresetStartBudget), "--json" },
-        dir.root() / "capture");
+    const auto run =
+        runRenderer({ "--match", recording, "-o", preset, "--match-budget", std::to_string(budget), "--json" }, dir.root() / "capture");
     INFO("stderr: " << run.err);
     REQUIRE(run.exitCode == 0);
     return parseJson(run.out);
 }
 } // namespace
 
-TEST_CASE("match: without --preset and --match-params the search starts from the nearest factory preset", "[renderer][match][slow]")
+TEST_CASE("match: without --preset and --match-params the searches start from the nearest factory presets", "[renderer][match][slow]")
 {
     // A strike of Piccolo as the recording: of the factory presets, Piccolo's own strike lies at 0 dB.
     TempDir dir;
@@ -317,11 +318,15 @@ TEST_CASE("match: without --preset and --match-params the search starts from the
     REQUIRE(runRenderer({ "-o", recording, "--preset", "Piccolo", "--hit", "0:100", "--seconds", "1" }, dir.root() / "capture").exitCode ==
             0);
     const auto preset = (dir.out() / "m.snarepreset").string();
-    const auto json = matchWithPresetStart(dir, recording, preset);
-    CHECK(json["start_preset"].toString() == "Piccolo");
+    // With kSecondStartBudget, two searches: from Piccolo and from the second-nearest preset.
+    const auto json = matchWithPresetStart(dir, recording, preset, snaresim::render::kSecondStartBudget);
+    REQUIRE(json["start_presets"].size() == 2);
+    CHECK(json["start_presets"][0].toString() == "Piccolo");
+    CHECK(json["start_presets"][1].toString() != "Piccolo");
+    CHECK(json["start_preset"].toString() == "Piccolo"); // the match's
     CHECK((double) json["start_preset_distance_db"] < 0.1);
     CHECK((double) json["strike_distance_db"] < 0.1); // the search keeps the start when nothing beats it
-    CHECK((int) json["renders"] <= snaresim::render::kPresetStartBudget);
+    CHECK((int) json["renders"] <= snaresim::render::kSecondStartBudget);
     CHECK(parameterOf(json, "shell_depth") == Approx(0.076)); // not searched: Piccolo's, not the default 0.14 m
 
     // With --match-params, or a smaller budget, the search starts from the defaults.
@@ -334,6 +339,7 @@ TEST_CASE("match: without --preset and --match-params the search starts from the
         REQUIRE(other.exitCode == 0);
         const auto j = parseJson(other.out);
         CHECK(j["start_preset"].isVoid());
+        CHECK(j["start_presets"].size() == 0);
         CHECK(parameterOf(j, "shell_depth") == Approx(0.14));
     }
 }
@@ -351,6 +357,7 @@ TEST_CASE("match: a strike heard in a room starts from the nearest of a few room
     const auto preset = (dir.out() / "m.snarepreset").string();
     const auto json = matchWithPresetStart(dir, recording, preset);
     CHECK(json["start_preset"].toString() == "Piccolo");
+    CHECK(json["start_presets"].size() == 1);               // one search below kSecondStartBudget
     CHECK((double) json["start_preset_distance_db"] > 1.0); // Piccolo in the free field
     CHECK((double) json["strike_distance_db"] < 0.1);
     CHECK(parameterOf(json, "room_time") == Approx(0.3));
