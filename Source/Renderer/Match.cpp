@@ -435,17 +435,22 @@ void checkMatchOptions(const RenderJob& job)
 
 // The factory presets ranked by how near their strikes (kMatchFixedVelocity) lie to the recording
 // by the whole-strike distance, among those with the snares as `start` has them, with --model and
-// --set over each as over any preset; nearest first (renders: the strikes this took). Empty when
-// none renders.
+// --set over each as over any preset; nearest first (empty when none renders), and the strikes
+// this took.
 struct PresetStart
 {
     std::string name;
     ParameterSet params;
     double strike_dB = 0.0;
+};
+
+struct PresetStarts
+{
+    std::vector<PresetStart> nearestFirst;
     int renders = 0;
 };
 
-std::vector<PresetStart> nearestPresetStarts(const RenderJob& job, const ParameterSet& start, double rate, const StrikeSignature& recording)
+PresetStarts nearestPresetStarts(const RenderJob& job, const ParameterSet& start, double rate, const StrikeSignature& recording)
 {
     std::vector<PresetStart> presets;
     for (const auto& preset : factoryPresets())
@@ -454,21 +459,21 @@ std::vector<PresetStart> nearestPresetStarts(const RenderJob& job, const Paramet
         withPreset.preset = std::string(preset.name);
         auto params = makeParameters(withPreset);
         if (params.get(ParamId::snaresEngaged) == start.get(ParamId::snaresEngaged))
-            presets.push_back({ std::string(preset.name), params, 0.0, 0 });
+            presets.push_back({ std::string(preset.name), params, 0.0 });
     }
     std::vector<Candidate> strikes;
     for (const auto& preset : presets)
         strikes.push_back({ preset.params, kMatchFixedVelocity });
     const auto results = evaluateAll(strikes, rate, recording);
-    std::vector<PresetStart> ranked;
+    PresetStarts ranked { {}, (int) presets.size() };
     for (std::size_t j = 0; j < presets.size(); ++j)
         if (results[j].terms)
         {
-            ranked.push_back(presets[j]);
-            ranked.back().strike_dB = results[j].terms->strike_dB;
-            ranked.back().renders = (int) presets.size();
+            ranked.nearestFirst.push_back(presets[j]);
+            ranked.nearestFirst.back().strike_dB = results[j].terms->strike_dB;
         }
-    std::stable_sort(ranked.begin(), ranked.end(), [](const PresetStart& a, const PresetStart& b) { return a.strike_dB < b.strike_dB; });
+    std::stable_sort(ranked.nearestFirst.begin(), ranked.nearestFirst.end(),
+                     [](const PresetStart& a, const PresetStart& b) { return a.strike_dB < b.strike_dB; });
     return ranked;
 }
 
@@ -582,11 +587,12 @@ int runMatch(const RenderJob& job)
     // --preset and --match-params the search starts from the nearest (what it does not search,
     // such as a felt mallet's exponent, comes with it); with kSecondStartBudget, another from the
     // second-nearest.
-    std::vector<PresetStart> presetStarts;
+    PresetStarts ranked;
     if (! job.preset && ! job.matchParams && budget >= kPresetStartBudget)
-        presetStarts = nearestPresetStarts(job, start, rate, recording);
+        ranked = nearestPresetStarts(job, start, rate, recording);
+    auto& presetStarts = ranked.nearestFirst;
     presetStarts.resize(std::min<std::size_t>(presetStarts.size(), budget >= kSecondStartBudget ? 2 : 1));
-    int startRenders = presetStarts.empty() ? 0 : presetStarts.front().renders;
+    int startRenders = ranked.renders;
     std::vector<ParameterSet> starts;
     for (const auto& p : presetStarts)
         starts.push_back(p.params);
