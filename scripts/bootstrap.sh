@@ -142,10 +142,10 @@ case "$mode" in
         ;;
     sanitize)
         # What the tests below run: the test programs, the renderer they call and the fuzzers
-        # (their seed corpora are tests). Not the plug-in's formats, their hosting tests, the
-        # golden tests or the lab: those run in the release suite only.
+        # (their seed corpora are tests). Not the plug-in's formats, the programs that host them,
+        # the golden tests or the lab: those run in the release suite only.
         targets=(engine_tests renderer_tests command_line_tests match_tests host_rate_tests
-                 strike_distance_tests snaresim_plugin_tests snaresim_multi_instance_bench
+                 strike_distance_tests snaresim_plugin_tests
                  snaresim_editor_screenshot snaresim-render
                  fuzz_state fuzz_midi_input fuzz_command_line fuzz_midi_file)
         log "building the tests with the sanitizers"
@@ -154,7 +154,7 @@ case "$mode" in
         # Two at a time: the instrumented physics is slow, and every test works in its own folder.
         # The tests labelled slow (long renders and mode fits that repeat the code paths of
         # shorter tests) run in the release suite only; the corner test does run here, on every
-        # core, with rolls of 0.13 s, three strikes, and 50 random combinations (1 s and 200 in
+        # core, with rolls of 0.13 s, three strikes, and 50 random combinations (0.5 s and 120 in
         # the release suite; it prints what it used).
         ctest --test-dir "$build_dir" --output-on-failure -j "$jobs" -LE slow
         SNARESIM_CORNER_SECONDS="${SNARESIM_CORNER_SECONDS:-0.13}" \

@@ -266,7 +266,9 @@ TEST_CASE("match: interrupted, it leaves no preset file and an older one intact"
     CHECK(readText(target) == "name = Older\n");
 }
 
-TEST_CASE("match: the default parameters searched, without the snare ones when the snares are off", "[renderer][match]")
+// [slow]: option logic, whose match runs the code of the FLAC and summary tests again (in the
+// sanitizer build 100 s).
+TEST_CASE("match: the default parameters searched, without the snare ones when the snares are off", "[renderer][match][slow]")
 {
     TempDir dir;
     const auto recording = matchInput(dir, "strike.wav", syntheticStrike(48000.0, 1.0)).string();
