@@ -73,6 +73,9 @@ Drum::Drum(const DrumConfig& config)
       pressureMics(cfg.mics, cfg.cavity, cfg.sampleRate_Hz, batterHead, carryHead), room(cfg.room, cfg.sampleRate_Hz),
       toHost(cfg.outputUp(), cfg.outputDown())
 {
+    // the float heads' volumes and moments taken with the microphones' cells
+    batterHead.takeSumsWithBlocks(pressureMics.cellSide(0));
+    carryHead.takeSumsWithBlocks(pressureMics.cellSide(1));
     if (cfg.cavity.model == AirModel::airbox)
     {
         boxAir.build(cfg.airBoxSpec(), cfg.airBox.threads, cfg.cavity.shellDepth_m, k, batterHead, carryHead);

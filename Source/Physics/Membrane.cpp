@@ -134,6 +134,7 @@ void Membrane::setNextAt(const int* nodes, const double* values, const int* inde
         const auto scatter = momentsKept ? SNARESIM_ON_VECTOR_TARGET(scatterNodesKeyed<true, float>)
                                          : SNARESIM_ON_VECTOR_TARGET(scatterNodesKeyed<false, float>);
         sumNext += scatter(fNext.data(), fX.data(), fY.data(), nodes, values, index, count, xSumNext, ySumNext);
+        sumsStale = sumSide > 0;
     }
     else
     {
@@ -170,10 +171,16 @@ void Membrane::computeFree(double p0, double px, double py)
     if (single)
     {
         // rows 1 .. n-2, whole: every neighbour read stays inside the padded grid
-        const auto update = tilt ? (field ? SNARESIM_ON_VECTOR_TARGET(updateGridFloat<true, true>)
-                                          : SNARESIM_ON_VECTOR_TARGET(updateGridFloat<true, false>))
-                                 : (field ? SNARESIM_ON_VECTOR_TARGET(updateGridFloat<false, true>)
-                                          : SNARESIM_ON_VECTOR_TARGET(updateGridFloat<false, false>));
+        // the sums on the way, or taken later (takeSumsWithBlocks)
+        const auto update = sumSide == 0 ? (tilt ? (field ? SNARESIM_ON_VECTOR_TARGET(updateGridFloat<true, true, true>)
+                                                          : SNARESIM_ON_VECTOR_TARGET(updateGridFloat<true, false, true>))
+                                                 : (field ? SNARESIM_ON_VECTOR_TARGET(updateGridFloat<false, true, true>)
+                                                          : SNARESIM_ON_VECTOR_TARGET(updateGridFloat<false, false, true>)))
+                                         : (tilt ? (field ? SNARESIM_ON_VECTOR_TARGET(updateGridFloat<true, true, false>)
+                                                          : SNARESIM_ON_VECTOR_TARGET(updateGridFloat<true, false, false>))
+                                                 : (field ? SNARESIM_ON_VECTOR_TARGET(updateGridFloat<false, true, false>)
+                                                          : SNARESIM_ON_VECTOR_TARGET(updateGridFloat<false, false, false>)));
+        sumsStale = sumSide > 0;
         sumNext = update(fNext.data() + n, fNow.data() + n, fPrev.data() + n, fMask.data() + n, fX.data() + n, fY.data() + n,
                          field ? fField.data() + n : nullptr, n, n * (n - 2), r, cl, cs, (float) push, (float) (gain * px),
                          (float) (gain * py), xSumNext, ySumNext);
@@ -192,6 +199,8 @@ void Membrane::computeFree(double p0, double px, double py)
 
 std::array<double, 2> Membrane::tiltNext() const
 {
+    if (sumsStale)
+        takeSums();
     if (momentsKept)
         return { h * h * xSumNext, h * h * ySumNext };
     const int n = g.width();
@@ -203,9 +212,37 @@ std::array<double, 2> Membrane::tiltNext() const
     return { h * h * sx, h * h * sy };
 }
 
+void Membrane::takeSumsWithBlocks(int side)
+{
+    if (! single || side < 1)
+        return;
+    const int n = g.width(), blocks = (n + side - 1) / side;
+    sumSide = side;
+    sideSums.assign((size_t) blocks * (size_t) blocks, 0.0);
+    columnX.resize((size_t) n);
+    rowYSingle.resize((size_t) n);
+    for (int i = 0; i < n; ++i)
+        columnX[(size_t) i] = rowYSingle[(size_t) i] = (double) (float) g.x(i); // fX, fY inside the disc
+    sumsStale = true;
+}
+
+void Membrane::takeSums() const
+{
+    const auto pass = momentsKept ? SNARESIM_ON_VECTOR_TARGET(blockSumsAndMoments<true, float>)
+                                  : SNARESIM_ON_VECTOR_TARGET(blockSumsAndMoments<false, float>);
+    pass(fNext.data(), g.width(), sumSide, columnX.data(), rowYSingle.data(), dRowScratch.data(), sideSums.data(), sumNext, xSumNext,
+         ySumNext);
+    sumsStale = false;
+}
+
 void Membrane::blockSumsNext(int side, double* out) const
 {
     const int n = g.width();
+    if (const double* taken = takenBlockSums(side))
+    {
+        std::copy(taken, taken + sideSums.size(), out);
+        return;
+    }
     if (single)
         SNARESIM_ON_VECTOR_TARGET(blockSums(fNext.data(), n, side, dRowScratch.data(), out));
     else
@@ -380,6 +417,7 @@ void Membrane::advance()
 void Membrane::clear()
 {
     sumNext = xSumNext = ySumNext = 0.0;
+    sumsStale = false;
     for (auto* w : { &wNext, &wNow, &wPrev })
         std::fill(w->begin(), w->end(), 0.0);
     for (auto* w : { &fNext, &fNow, &fPrev })

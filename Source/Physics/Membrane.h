@@ -52,6 +52,21 @@ public:
     // Keep the first moments as the sum is kept: summed in computeFree, moved by every force
     // update; for a coupling that reads them every step (OutsideAirCoupling).
     void keepMoments() { momentsKept = true; }
+    // The float state: its sum and first moments at n+1 are not kept by computeFree and the force
+    // updates but taken in one pass once the step's forces are in (the first read of the
+    // volume, the moments or the block sums of this side after a change), a double sum of the
+    // state as it is, with the blocks' sums of this side on the way (takenBlockSums). The double
+    // state keeps its running sums: this does nothing there.
+    void takeSumsWithBlocks(int side);
+    // blockSumsNext's sums at this side when they come with the taken sums, else nullptr.
+    const double* takenBlockSums(int side) const
+    {
+        if (side != sumSide)
+            return nullptr;
+        if (sumsStale)
+            takeSums();
+        return sideSums.data();
+    }
     // sum(w^{n+1}) over square blocks of side x side nodes (block (bx, by) holds the nodes with
     // ix / side == bx, iy / side == by) into out[by * blocks + bx], blocks = ceil(N / side), in
     // double: h^2 times it is a block's volume. A pass over the grid: the pressure microphones'
@@ -127,8 +142,13 @@ public:
         sumNext = sum;
     }
     // h^2 sum(w) at n+1: the volume swept by the head (summed in computeFree, kept by the
-    // force updates).
-    double sweptVolumeNext() const { return h * h * sumNext; }
+    // force updates; or taken once the forces are in: takeSumsWithBlocks).
+    double sweptVolumeNext() const
+    {
+        if (sumsStale)
+            takeSums();
+        return h * h * sumNext;
+    }
 
     // Rotate time levels after a completed step.
     void advance();
@@ -159,16 +179,29 @@ private:
     double rho, T = 0, sigma0 = 0, sigma1 = 0;
     double maxT, maxSigma1;
     double q = 1;
-    double a0 = 0, a1 = 0, b0 = 0, b1 = 0; // stencil coefficients
-    float r = 0, cl = 0, cs = 0;           // the same as an increment, for the float state (computeFree)
-    std::vector<int> rowBegin, rowEnd;     // columns holding interior nodes, per row
-    std::vector<double> rowY;              // y of each row (m)
-    double sumNext = 0.0;                  // sum(w^{n+1})
-    bool momentsKept = false;              // keepMoments
-    double xSumNext = 0.0, ySumNext = 0.0; // sum(x w^{n+1}), sum(y w^{n+1}), when kept
+    double a0 = 0, a1 = 0, b0 = 0, b1 = 0;         // stencil coefficients
+    float r = 0, cl = 0, cs = 0;                   // the same as an increment, for the float state (computeFree)
+    std::vector<int> rowBegin, rowEnd;             // columns holding interior nodes, per row
+    std::vector<double> rowY;                      // y of each row (m)
+    mutable double sumNext = 0.0;                  // sum(w^{n+1})
+    bool momentsKept = false;                      // keepMoments
+    mutable double xSumNext = 0.0, ySumNext = 0.0; // sum(x w^{n+1}), sum(y w^{n+1}), when kept
+    // takeSumsWithBlocks: the side of the blocks summed with them (0: the sums are kept), whether
+    // w^{n+1} changed since they were taken, the blocks' sums, x by column and y by row (as the
+    // float state's xs, ys hold them)
+    int sumSide = 0;
+    mutable bool sumsStale = false;
+    mutable std::vector<double> sideSums;
+    std::vector<double> columnX, rowYSingle;
+    void takeSums() const;
     // w^{n+1} at a node moved by dw: the sums kept follow
     void moved(int node, double dw)
     {
+        if (sumSide > 0)
+        {
+            sumsStale = true;
+            return;
+        }
         sumNext += dw;
         if (momentsKept)
         {

@@ -95,10 +95,11 @@ double updateRows(double* __restrict out, const double* __restrict w, const doub
 // increment, w+ = w + r v + cl L w + cs L v with v = w - w- and L the unscaled 5-point
 // Laplacian, so that no coefficient near 2 multiplies w: a float
 // coefficient's rounding then moves the modes by parts in 1e8 of their small restoring term,
-// not of 2 w. Returns the sum of out, in double.
+// not of 2 w. With Sums, returns the sum of out, in double (else 0: Membrane::takeSums).
 // With Tilt, a pressure px x + py y is added (xs, ys: x and y times the mask), and sx, sy are set
-// to sum(xs out), sum(ys out) in double; with Field, a push per node (field, times the mask).
-template <bool Tilt, bool Field>
+// to sum(xs out), sum(ys out) in double (with Sums); with Field, a push per node (field, times
+// the mask).
+template <bool Tilt, bool Field, bool Sums>
 double updateGridFloat(float* __restrict out, const float* __restrict w, const float* __restrict wp, const float* __restrict mask,
                        const float* __restrict xs, const float* __restrict ys, const float* __restrict field, int n, int count, float r,
                        float cl, float cs, float push, float px, float py, double& sx, double& sy)
@@ -119,11 +120,14 @@ double updateGridFloat(float* __restrict out, const float* __restrict w, const f
         else
             next = mask[m] * (c + (r * v + cl * (nb - 4.0f * c) + cs * ((nb - nbp) - 4.0f * v) + p));
         out[m] = next;
-        sum += (double) next;
-        if constexpr (Tilt)
+        if constexpr (Sums)
         {
-            ax += (double) xs[m] * (double) next;
-            ay += (double) ys[m] * (double) next;
+            sum += (double) next;
+            if constexpr (Tilt)
+            {
+                ax += (double) xs[m] * (double) next;
+                ay += (double) ys[m] * (double) next;
+            }
         }
     }
     sx = ax;
@@ -191,6 +195,136 @@ void sumBlocks(const Real* __restrict w, int n, double* __restrict acc, double* 
             o[bx] = s;
         }
     }
+}
+// sumBlocks' pass (the same block sums, to the last bit) with the grid's sum and, with Moments,
+// its first moments on the way, in double: each node weighted by its row's y (ys, by row) and
+// each band's column sum by its column's x (xs, by column). Explicit vectors along the rows, the
+// last one ending at n over the one before (its lanes summed already count nothing twice: a
+// weight of 0 or 1 each), so no row has a scalar end; the sums stay in vector lanes to the end.
+// Rows: the band's rows, a constant where it is Side (0: any, `rows`).
+template <class Real>
+struct DoubleLanes; // Real values of a vector of doubles
+template <>
+struct DoubleLanes<float>
+{
+    using Type = float __attribute__((vector_size(SNARESIM_VECTOR_BYTES / 2)));
+};
+template <>
+struct DoubleLanes<double>
+{
+    using Type = double __attribute__((vector_size(SNARESIM_VECTOR_BYTES)));
+};
+using DoubleVector = double __attribute__((vector_size(SNARESIM_VECTOR_BYTES)));
+template <int Rows, bool Moments, class Real>
+void sumBand(const Real* __restrict row0, int n, int rows, const double* __restrict xs, const double* __restrict y, double* __restrict band,
+             DoubleVector& total, DoubleVector& sx, DoubleVector& sy)
+{
+    constexpr int lanes = SNARESIM_VECTOR_BYTES / (int) sizeof(double);
+    using V = DoubleVector;
+    const int count = Rows > 0 ? Rows : rows;
+    for (int start = 0; start < n; start += lanes)
+    {
+        const int ix = std::min(start, n - lanes);
+        typename DoubleLanes<Real>::Type r;
+        std::memcpy(&r, row0 + (size_t) ix, sizeof r);
+        V v = __builtin_convertvector(r, V), b = v, t = y[0] * v;
+        for (int k = 1; k < count; ++k)
+        {
+            std::memcpy(&r, row0 + (size_t) k * (size_t) n + (size_t) ix, sizeof r);
+            v = __builtin_convertvector(r, V);
+            b += v;
+            t += y[k] * v;
+        }
+        std::memcpy(band + ix, &b, sizeof b);
+        if (ix < start) // the lanes before `start` are summed already
+        {
+            V keep;
+            for (int i = 0; i < lanes; ++i)
+                keep[i] = ix + i >= start ? 1.0 : 0.0;
+            b *= keep;
+            if constexpr (Moments)
+                t *= keep;
+        }
+        total += b;
+        if constexpr (Moments)
+        {
+            V x;
+            std::memcpy(&x, xs + ix, sizeof x);
+            sx += x * b;
+            sy += t;
+        }
+    }
+}
+template <int Side, bool Moments, class Real>
+void sumBlocksAndMoments(const Real* __restrict w, int n, int side, const double* __restrict xs, const double* __restrict ys,
+                         double* __restrict acc, double* __restrict out, double& sum, double& sx, double& sy)
+{
+    constexpr int lanes = SNARESIM_VECTOR_BYTES / (int) sizeof(double);
+    const int s = Side > 0 ? Side : side, blocks = (n + s - 1) / s, length = blocks * s;
+    DoubleVector vt {}, vx {}, vy {};
+    for (int by = 0; by < blocks; ++by)
+    {
+        const int first = by * s, rows = std::min(n, first + s) - first;
+        const Real* row0 = w + (size_t) first * (size_t) n;
+        double* band = acc + (size_t) by * (size_t) length;
+        if (n < lanes) // not a head's grid
+            for (int ix = 0; ix < n; ++ix)
+            {
+                double b = 0.0, t = 0.0;
+                for (int r = 0; r < rows; ++r)
+                {
+                    const double v = (double) row0[(size_t) r * (size_t) n + (size_t) ix];
+                    b += v;
+                    t += ys[first + r] * v;
+                }
+                band[ix] = b;
+                vt[0] += b;
+                vx[0] += xs[ix] * b;
+                vy[0] += t;
+            }
+        else if (Side > 0 && rows == Side)
+            sumBand<Side, Moments>(row0, n, rows, xs, ys + first, band, vt, vx, vy);
+        else
+            sumBand<0, Moments>(row0, n, rows, xs, ys + first, band, vt, vx, vy);
+        for (int ix = n; ix < length; ++ix)
+            band[ix] = 0.0;
+    }
+    for (int by = 0; by < blocks; ++by)
+    {
+        const double* band = acc + (size_t) by * (size_t) length;
+        double* o = out + (size_t) by * (size_t) blocks;
+        for (int bx = 0; bx < blocks; ++bx)
+        {
+            double b = band[bx * s];
+            for (int c = 1; c < s; ++c)
+                b += band[bx * s + c];
+            o[bx] = b;
+        }
+    }
+    double total = 0.0, ax = 0.0, ay = 0.0;
+    for (int i = 0; i < lanes; ++i)
+    {
+        total += vt[i];
+        ax += vx[i];
+        ay += vy[i];
+    }
+    sum = total;
+    sx = Moments ? ax : 0.0;
+    sy = Moments ? ay : 0.0;
+}
+template <bool Moments, class Real>
+void blockSumsAndMoments(const Real* w, int n, int side, const double* xs, const double* ys, double* acc, double* out, double& sum,
+                         double& sx, double& sy)
+{
+    switch (side)
+    {
+        case 1: sumBlocksAndMoments<1, Moments>(w, n, side, xs, ys, acc, out, sum, sx, sy); return;
+        case 2: sumBlocksAndMoments<2, Moments>(w, n, side, xs, ys, acc, out, sum, sx, sy); return;
+        case 3: sumBlocksAndMoments<3, Moments>(w, n, side, xs, ys, acc, out, sum, sx, sy); return;
+        case 4: sumBlocksAndMoments<4, Moments>(w, n, side, xs, ys, acc, out, sum, sx, sy); return;
+        default: break;
+    }
+    sumBlocksAndMoments<0, Moments>(w, n, side, xs, ys, acc, out, sum, sx, sy);
 }
 // The same for any side (fine grids: 96 kHz), the band's rows added one after another: the
 // general form of sumBlocks, whose constant Side keeps a column's sum in a register.

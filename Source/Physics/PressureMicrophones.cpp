@@ -283,7 +283,7 @@ void PressureMicrophones::listen(const Membrane& batter, const Membrane& carry, 
     for (int hi = 0; hi < 2; ++hi)
     {
         Head& h = heads[(size_t) hi];
-        const double* blockSum = sums[(size_t) hi];
+        const double* blockSum = sums[(size_t) hi] != nullptr ? sums[(size_t) hi] : membranes[hi]->takenBlockSums(h.side);
         if (blockSum == nullptr)
         {
             membranes[hi]->blockSumsNext(h.side, h.blockSum.data()); // volumes / h^2

@@ -21,7 +21,8 @@
 // <.> the mean over the facing rim's points, d from a rim point to the microphone, H the shell's
 // depth, A_f, A_o the heads' whole outward volume accelerations (the batter's outward normal up,
 // the carry head's down). The air box checks it (Tests/Engine/PressureMicrophoneTests.cpp).
-// Cost per step: a pass over each head (Membrane::blockSumsNext), a store per cell, and two
+// Cost per step: a pass over each head (Membrane::blockSumsNext; the float head's comes with its
+// taken sums, Membrane::takeSumsWithBlocks), a store per cell, and two
 // multiply-adds per cell per microphone, summed a block of steps at a time. Real-time safe
 // after construction: setPositions and listen allocate nothing.
 
@@ -61,7 +62,8 @@ public:
     // Once the heads' w^{n+1} is final: the cells' volumes at n+1, their accelerations at n,
     // and the pressures at the microphones.
     // sums: each head's Membrane::blockSumsNext at its cells' side for this step, if a coupling
-    // already has them (CavityModesCoupling), else nullptr.
+    // already has them (CavityModesCoupling), else nullptr (then the head's taken sums at that
+    // side, Membrane::takenBlockSums, or a pass of its own).
     void listen(const Membrane& batter, const Membrane& carry, std::array<const double*, 2> sums = {}) noexcept;
     int cellSide(int head) const { return heads[(size_t) head].side; }
     double pressure(Position p) const { return out[(size_t) p]; }
