@@ -417,7 +417,7 @@ void Membrane::advance()
 void Membrane::clear()
 {
     sumNext = xSumNext = ySumNext = 0.0;
-    sumsStale = false;
+    sumsStale = sumSide > 0; // the blocks' sums too: taken again, of zeros
     for (auto* w : { &wNext, &wNow, &wPrev })
         std::fill(w->begin(), w->end(), 0.0);
     for (auto* w : { &fNext, &fNow, &fPrev })

@@ -300,5 +300,8 @@ TEST_CASE("the float head's taken sums equal the plain sums of its state after e
         for (Membrane* head : { &taken, &kept })
             head->setNextAt(nodes, values, nullptr, 2);
         check("after two nodes were set together");
+        for (Membrane* head : { &taken, &kept })
+            head->clear();
+        check("after a clear");
     }
 }
