@@ -131,10 +131,19 @@ void Membrane::setNextAt(const int* nodes, const double* values, const int* inde
 {
     if (single)
     {
-        const auto scatter = momentsKept ? SNARESIM_ON_VECTOR_TARGET(scatterNodesKeyed<true, float>)
-                                         : SNARESIM_ON_VECTOR_TARGET(scatterNodesKeyed<false, float>);
-        sumNext += scatter(fNext.data(), fX.data(), fY.data(), nodes, values, index, count, xSumNext, ySumNext);
-        sumsStale = sumSide > 0;
+        // the running sums follow, unless they are taken later (takeSumsWithBlocks)
+        const bool kept = sumSide == 0;
+        const auto scatter = kept && momentsKept ? SNARESIM_ON_VECTOR_TARGET(scatterNodesKeyed<true, float>)
+                                                 : SNARESIM_ON_VECTOR_TARGET(scatterNodesKeyed<false, float>);
+        double dx = 0.0, dy = 0.0;
+        const double change = scatter(fNext.data(), fX.data(), fY.data(), nodes, values, index, count, dx, dy);
+        if (kept)
+        {
+            sumNext += change;
+            xSumNext += dx;
+            ySumNext += dy;
+        }
+        sumsStale = ! kept;
     }
     else
     {
@@ -219,10 +228,9 @@ void Membrane::takeSumsWithBlocks(int side)
     const int n = g.width(), blocks = (n + side - 1) / side;
     sumSide = side;
     sideSums.assign((size_t) blocks * (size_t) blocks, 0.0);
-    columnX.resize((size_t) n);
-    rowYSingle.resize((size_t) n);
+    axisSingle.resize((size_t) n);
     for (int i = 0; i < n; ++i)
-        columnX[(size_t) i] = rowYSingle[(size_t) i] = (double) (float) g.x(i); // fX, fY inside the disc
+        axisSingle[(size_t) i] = (double) (float) g.x(i); // fX by column, fY by row, inside the disc
     sumsStale = true;
 }
 
@@ -230,7 +238,7 @@ void Membrane::takeSums() const
 {
     const auto pass = momentsKept ? SNARESIM_ON_VECTOR_TARGET(blockSumsAndMoments<true, float>)
                                   : SNARESIM_ON_VECTOR_TARGET(blockSumsAndMoments<false, float>);
-    pass(fNext.data(), g.width(), sumSide, columnX.data(), rowYSingle.data(), dRowScratch.data(), sideSums.data(), sumNext, xSumNext,
+    pass(fNext.data(), g.width(), sumSide, axisSingle.data(), axisSingle.data(), dRowScratch.data(), sideSums.data(), sumNext, xSumNext,
          ySumNext);
     sumsStale = false;
 }
