@@ -831,8 +831,9 @@ Matching a recording:
                         the start (the defaults, --preset, --set; without --preset and
                         --match-params, and with a budget of 60 or more, the factory
                         preset whose strike lies nearest the recording, --set over it;
-                        with 300 or more, a second search from the second-nearest, half
-                        the budget each) and a Latin hypercube, then a compass search;
+                        with 300 or more, a second search from the second-nearest, and
+                        from 1200 one more from the next for each 400 renders, the budget
+                        shared evenly) and a Latin hypercube, then a compass search;
                         the three best of all struck again at velocity -4 and +4, the
                         best mean wins. Prints the best distance as it goes
                         (stderr; one line in place on a terminal), then the match's

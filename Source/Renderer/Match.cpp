@@ -586,12 +586,12 @@ int runMatch(const RenderJob& job)
     // A recording's drum lies nearer one of the factory presets than the defaults: without
     // --preset and --match-params the search starts from the nearest (what it does not search,
     // such as a felt mallet's exponent, comes with it); with kSecondStartBudget, another from the
-    // second-nearest.
+    // second-nearest, and with more, from the next (presetSearches).
     PresetStarts ranked;
     if (! job.preset && ! job.matchParams && budget >= kPresetStartBudget)
         ranked = nearestPresetStarts(job, start, rate, recording);
     auto& presetStarts = ranked.nearestFirst;
-    presetStarts.resize(std::min<std::size_t>(presetStarts.size(), budget >= kSecondStartBudget ? 2 : 1));
+    presetStarts.resize(std::min<std::size_t>(presetStarts.size(), (std::size_t) presetSearches(budget)));
     int startRenders = ranked.renders;
     std::vector<ParameterSet> starts;
     for (const auto& p : presetStarts)

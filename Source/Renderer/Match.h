@@ -24,9 +24,23 @@ inline constexpr int kDefaultMatchSeed = 20240611; // --match-seed
 // factory preset whose strike lies nearest the recording (its renders count in the budget).
 inline constexpr int kPresetStartBudget = 60;
 // With at least this budget, a second search starts from the second-nearest factory preset and
-// each has half of what is left: the nearest preset by one strike is not always the basin of the
-// best match (what is not searched, such as the mallet's felt and the shell, comes with it).
+// the searches share what is left evenly: the nearest preset by one strike is not always the
+// basin of the best match (what is not searched, such as the mallet's felt and the shell, comes
+// with it).
 inline constexpr int kSecondStartBudget = 300;
+// From three times this budget on, one search from each of the budget / kRendersPerSearch
+// nearest factory presets (--match-budget 1200: three, 2400: six), up to every preset.
+inline constexpr int kRendersPerSearch = 400;
+
+// How many searches a budget starts from the nearest factory presets.
+constexpr int presetSearches(int budget)
+{
+    if (budget < kPresetStartBudget)
+        return 0;
+    if (budget < kSecondStartBudget)
+        return 1;
+    return budget / kRendersPerSearch > 2 ? budget / kRendersPerSearch : 2;
+}
 
 // The default --match-params (velocity: the strike's MIDI velocity, searched with them); with
 // the snares off at the start, snare_tension and snare_count are left out.

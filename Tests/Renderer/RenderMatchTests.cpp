@@ -312,6 +312,20 @@ juce::var matchWithPresetStart(const TempDir& dir, const std::string& recording,
 }
 } // namespace
 
+TEST_CASE("match: the budget sets how many searches start from the nearest factory presets", "[renderer][match]")
+{
+    using snaresim::render::presetSearches;
+    CHECK(presetSearches(snaresim::render::kPresetStartBudget - 1) == 0); // the defaults, one search
+    CHECK(presetSearches(snaresim::render::kPresetStartBudget) == 1);
+    CHECK(presetSearches(snaresim::render::kSecondStartBudget - 1) == 1);
+    CHECK(presetSearches(snaresim::render::kSecondStartBudget) == 2);
+    CHECK(presetSearches(snaresim::render::kDefaultMatchBudget) == 2);
+    CHECK(presetSearches(1199) == 2);
+    CHECK(presetSearches(1200) == 3);
+    CHECK(presetSearches(1600) == 4);
+    CHECK(presetSearches(100000) == 250); // capped later by the presets there are
+}
+
 TEST_CASE("match: without --preset and --match-params the searches start from the nearest factory presets", "[renderer][match][slow]")
 {
     // A strike of Piccolo as the recording: of the factory presets, Piccolo's own strike lies at 0 dB.
