@@ -78,8 +78,11 @@ TEST_CASE("the drum in the air box steps, and takes new head damping, without al
 {
     DrumConfig cfg = test::wholeDrum();
     cfg.cavity.model = AirModel::airbox;
-    cfg.snares.scheme = GENERATE(CollisionScheme::newton, CollisionScheme::quadratised);
-    const bool profiled = GENERATE(false, true); // the step profile on or off
+    // Each scheme once and the step profile off and on (the profile's clock is the same for both
+    // schemes): two air-box drums, not four.
+    const auto [scheme, profiled] =
+        GENERATE(table<CollisionScheme, bool>({ { CollisionScheme::newton, false }, { CollisionScheme::quadratised, true } }));
+    cfg.snares.scheme = scheme;
     Drum drum(cfg);
     drum.setEnergyTracking(true);
     drum.setProfiling(profiled);
