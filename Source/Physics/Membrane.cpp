@@ -236,8 +236,8 @@ void Membrane::takeSumsWithBlocks(int side)
 
 void Membrane::takeSums() const
 {
-    const auto pass = momentsKept ? SNARESIM_ON_VECTOR_TARGET(blockSumsAndMoments<true, float>)
-                                  : SNARESIM_ON_VECTOR_TARGET(blockSumsAndMoments<false, float>);
+    const auto pass =
+        momentsKept ? SNARESIM_ON_VECTOR_TARGET(blockSumsAndMoments<true>) : SNARESIM_ON_VECTOR_TARGET(blockSumsAndMoments<false>);
     pass(fNext.data(), g.width(), sumSide, axisSingle.data(), axisSingle.data(), dRowScratch.data(), sideSums.data(), sumNext, xSumNext,
          ySumNext);
     sumsStale = false;

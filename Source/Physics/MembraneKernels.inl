@@ -202,22 +202,11 @@ void sumBlocks(const Real* __restrict w, int n, double* __restrict acc, double* 
 // last one ending at n over the one before (its lanes summed already count nothing twice: a
 // weight of 0 or 1 each), so no row has a scalar end; the sums stay in vector lanes to the end.
 // Rows: the band's rows, a constant where it is Side (0: any, `rows`).
-template <class Real>
-struct DoubleLanes; // Real values of a vector of doubles
-template <>
-struct DoubleLanes<float>
-{
-    using Type = float __attribute__((vector_size(SNARESIM_VECTOR_BYTES / 2)));
-};
-template <>
-struct DoubleLanes<double>
-{
-    using Type = double __attribute__((vector_size(SNARESIM_VECTOR_BYTES)));
-};
 using DoubleVector = double __attribute__((vector_size(SNARESIM_VECTOR_BYTES)));
-template <int Rows, bool Moments, class Real>
-void sumBand(const Real* __restrict row0, int n, int rows, const double* __restrict xs, const double* __restrict y, double* __restrict band,
-             DoubleVector& total, DoubleVector& sx, DoubleVector& sy)
+using DoubleVectorFloats = float __attribute__((vector_size(SNARESIM_VECTOR_BYTES / 2))); // a DoubleVector's lanes in float
+template <int Rows, bool Moments>
+void sumBand(const float* __restrict row0, int n, int rows, const double* __restrict xs, const double* __restrict y,
+             double* __restrict band, DoubleVector& total, DoubleVector& sx, DoubleVector& sy)
 {
     constexpr int lanes = SNARESIM_VECTOR_BYTES / (int) sizeof(double);
     using V = DoubleVector;
@@ -225,7 +214,7 @@ void sumBand(const Real* __restrict row0, int n, int rows, const double* __restr
     for (int start = 0; start < n; start += lanes)
     {
         const int ix = std::min(start, n - lanes);
-        typename DoubleLanes<Real>::Type r;
+        DoubleVectorFloats r;
         std::memcpy(&r, row0 + (size_t) ix, sizeof r);
         V v = __builtin_convertvector(r, V), b = v, t = y[0] * v;
         for (int k = 1; k < count; ++k)
@@ -255,8 +244,8 @@ void sumBand(const Real* __restrict row0, int n, int rows, const double* __restr
         }
     }
 }
-template <int Side, bool Moments, class Real>
-void sumBlocksAndMoments(const Real* __restrict w, int n, int side, const double* __restrict xs, const double* __restrict ys,
+template <int Side, bool Moments>
+void sumBlocksAndMoments(const float* __restrict w, int n, int side, const double* __restrict xs, const double* __restrict ys,
                          double* __restrict acc, double* __restrict out, double& sum, double& sx, double& sy)
 {
     constexpr int lanes = SNARESIM_VECTOR_BYTES / (int) sizeof(double);
@@ -265,7 +254,7 @@ void sumBlocksAndMoments(const Real* __restrict w, int n, int side, const double
     for (int by = 0; by < blocks; ++by)
     {
         const int first = by * s, rows = std::min(n, first + s) - first;
-        const Real* row0 = w + (size_t) first * (size_t) n;
+        const float* row0 = w + (size_t) first * (size_t) n;
         double* band = acc + (size_t) by * (size_t) length;
         if (n < lanes) // not a head's grid
             for (int ix = 0; ix < n; ++ix)
@@ -312,8 +301,8 @@ void sumBlocksAndMoments(const Real* __restrict w, int n, int side, const double
     sx = Moments ? ax : 0.0;
     sy = Moments ? ay : 0.0;
 }
-template <bool Moments, class Real>
-void blockSumsAndMoments(const Real* w, int n, int side, const double* xs, const double* ys, double* acc, double* out, double& sum,
+template <bool Moments>
+void blockSumsAndMoments(const float* w, int n, int side, const double* xs, const double* ys, double* acc, double* out, double& sum,
                          double& sx, double& sy)
 {
     switch (side)

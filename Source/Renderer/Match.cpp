@@ -588,7 +588,7 @@ int runMatch(const RenderJob& job)
     // such as a felt mallet's exponent, comes with it); with kSecondStartBudget, another from the
     // second-nearest, and with more, from the next (presetSearches).
     PresetStarts ranked;
-    if (! job.preset && ! job.matchParams && budget >= kPresetStartBudget)
+    if (! job.preset && ! job.matchParams && presetSearches(budget) > 0)
         ranked = nearestPresetStarts(job, start, rate, recording);
     auto& presetStarts = ranked.nearestFirst;
     presetStarts.resize(std::min<std::size_t>(presetStarts.size(), (std::size_t) presetSearches(budget)));

@@ -11,6 +11,7 @@
 
 #include "RenderJob.h"
 
+#include <algorithm>
 #include <string>
 
 namespace snaresim::render
@@ -39,7 +40,7 @@ constexpr int presetSearches(int budget)
         return 0;
     if (budget < kSecondStartBudget)
         return 1;
-    return budget / kRendersPerSearch > 2 ? budget / kRendersPerSearch : 2;
+    return std::max(2, budget / kRendersPerSearch);
 }
 
 // The default --match-params (velocity: the strike's MIDI velocity, searched with them); with
