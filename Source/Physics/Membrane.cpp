@@ -7,6 +7,10 @@
 #include <cmath>
 #include <cstring>
 
+#if SNARESIM_VECTOR_TARGETS
+#include <immintrin.h>
+#endif
+
 namespace snaresim
 {
 namespace
@@ -93,6 +97,9 @@ Membrane::Membrane(const MembraneSpec& s, double timeStep, double reserve, doubl
     {
         fX.assign(xs.begin(), xs.end(), n);
         fY.assign(ys.begin(), ys.end(), n);
+        fAxis.resize((size_t) n);
+        for (int i = 0; i < n; ++i)
+            fAxis[(size_t) i] = (float) g.x(i);
     }
     else
     {
@@ -179,17 +186,23 @@ void Membrane::computeFree(double p0, double px, double py)
         expandBlockPressure();
     if (single)
     {
-        // rows 1 .. n-2, whole: every neighbour read stays inside the padded grid
-        // the sums on the way, or taken later (takeSumsWithBlocks)
-        const auto update = sumSide == 0 ? (tilt ? (field ? SNARESIM_ON_VECTOR_TARGET(updateGridFloat<true, true, true>)
-                                                          : SNARESIM_ON_VECTOR_TARGET(updateGridFloat<true, false, true>))
-                                                 : (field ? SNARESIM_ON_VECTOR_TARGET(updateGridFloat<false, true, true>)
-                                                          : SNARESIM_ON_VECTOR_TARGET(updateGridFloat<false, false, true>)))
-                                         : (tilt ? (field ? SNARESIM_ON_VECTOR_TARGET(updateGridFloat<true, true, false>)
-                                                          : SNARESIM_ON_VECTOR_TARGET(updateGridFloat<true, false, false>))
-                                                 : (field ? SNARESIM_ON_VECTOR_TARGET(updateGridFloat<false, true, false>)
-                                                          : SNARESIM_ON_VECTOR_TARGET(updateGridFloat<false, false, false>)));
         sumsStale = sumSide > 0;
+        if (sumsStale) // the sums taken later (takeSumsWithBlocks): the disc's rows only
+        {
+            const auto rows = tilt ? (field ? SNARESIM_ON_VECTOR_TARGET(updateRowsFloat<true, true>)
+                                            : SNARESIM_ON_VECTOR_TARGET(updateRowsFloat<true, false>))
+                                   : (field ? SNARESIM_ON_VECTOR_TARGET(updateRowsFloat<false, true>)
+                                            : SNARESIM_ON_VECTOR_TARGET(updateRowsFloat<false, false>));
+            rows(fNext.data(), fNow.data(), fPrev.data(), fAxis.data(), fAxis.data(), field ? fField.data() : nullptr, rowBegin.data(),
+                 rowEnd.data(), n, r, cl, cs, (float) push, (float) (gain * px), (float) (gain * py));
+            return;
+        }
+        // rows 1 .. n-2, whole: every neighbour read stays inside the padded grid, the sums on
+        // the way
+        const auto update = tilt ? (field ? SNARESIM_ON_VECTOR_TARGET(updateGridFloat<true, true>)
+                                          : SNARESIM_ON_VECTOR_TARGET(updateGridFloat<true, false>))
+                                 : (field ? SNARESIM_ON_VECTOR_TARGET(updateGridFloat<false, true>)
+                                          : SNARESIM_ON_VECTOR_TARGET(updateGridFloat<false, false>));
         sumNext = update(fNext.data() + n, fNow.data() + n, fPrev.data() + n, fMask.data() + n, fX.data() + n, fY.data() + n,
                          field ? fField.data() + n : nullptr, n, n * (n - 2), r, cl, cs, (float) push, (float) (gain * px),
                          (float) (gain * py), xSumNext, ySumNext);

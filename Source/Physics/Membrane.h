@@ -215,6 +215,7 @@ private:
     RowAlignedGrid<float> fNext, fNow, fPrev; // single precision, else empty
     RowAlignedGrid<float> fMask;              // single precision: the grid's mask
     RowAlignedGrid<float> fX, fY;             // single precision: x and y times the mask
+    std::vector<float> fAxis;                 // single precision: x by column (y by row alike)
     std::vector<double> dX, dY;               // double precision: the same
     mutable std::vector<double> dRowScratch;  // the bands of rows summed, for blockSumsNext
     mutable std::vector<double> accScratch;   // the bands' rows, for blockAccelerationsIn

@@ -90,16 +90,14 @@ double updateRows(double* __restrict out, const double* __restrict w, const doub
 }
 
 // Eq. (22) in single precision over the whole padded grid, row after row without a break
-// (nodes on and outside the rim are multiplied by the mask, so they stay zero): the disc's
-// short rows cost more in loop ends than the corners' extra nodes in float. Written as an
-// increment, w+ = w + r v + cl L w + cs L v with v = w - w- and L the unscaled 5-point
-// Laplacian, so that no coefficient near 2 multiplies w: a float
-// coefficient's rounding then moves the modes by parts in 1e8 of their small restoring term,
-// not of 2 w. With Sums, returns the sum of out, in double (else 0: Membrane::takeSums).
-// With Tilt, a pressure px x + py y is added (xs, ys: x and y times the mask), and sx, sy are set
-// to sum(xs out), sum(ys out) in double (with Sums); with Field, a push per node (field, times
-// the mask).
-template <bool Tilt, bool Field, bool Sums>
+// (nodes on and outside the rim are multiplied by the mask, so they stay zero), its sums on the
+// way (a head whose sums are taken later: updateRowsFloat). Written as an increment,
+// w+ = w + r v + cl L w + cs L v with v = w - w- and L the unscaled 5-point Laplacian, so that no
+// coefficient near 2 multiplies w: a float coefficient's rounding then moves the modes by parts
+// in 1e8 of their small restoring term, not of 2 w. Returns the sum of out, in double. With
+// Tilt, a pressure px x + py y is added (xs, ys: x and y times the mask), and sx, sy are set to
+// sum(xs out), sum(ys out) in double; with Field, a push per node (field, times the mask).
+template <bool Tilt, bool Field>
 double updateGridFloat(float* __restrict out, const float* __restrict w, const float* __restrict wp, const float* __restrict mask,
                        const float* __restrict xs, const float* __restrict ys, const float* __restrict field, int n, int count, float r,
                        float cl, float cs, float push, float px, float py, double& sx, double& sy)
@@ -120,19 +118,107 @@ double updateGridFloat(float* __restrict out, const float* __restrict w, const f
         else
             next = mask[m] * (c + (r * v + cl * (nb - 4.0f * c) + cs * ((nb - nbp) - 4.0f * v) + p));
         out[m] = next;
-        if constexpr (Sums)
+        sum += (double) next;
+        if constexpr (Tilt)
         {
-            sum += (double) next;
-            if constexpr (Tilt)
-            {
-                ax += (double) xs[m] * (double) next;
-                ay += (double) ys[m] * (double) next;
-            }
+            ax += (double) xs[m] * (double) next;
+            ay += (double) ys[m] * (double) next;
         }
     }
     sx = ax;
     sy = ay;
     return sum;
+}
+// updateGridFloat's eq. (22) (its sums taken later) row by row over the disc's nodes only: row
+// iy's nodes rowBegin[iy] .. rowEnd[iy] - 1, a vector at a time, the row's last vector ending at
+// its end over the one before (out is written twice with the same values there). A row shorter
+// than a vector takes one vector whose lanes beyond the row write zero (nodes off the disc). No
+// mask is read, and with Tilt the pressure px x + py y takes x by column (xAxis) and y by row
+// (yAxis): the same values, in the same operations, as updateGridFloat's inside the disc.
+template <bool Tilt, bool Field>
+void updateRowsFloat(float* __restrict out, const float* __restrict w, const float* __restrict wp, const float* __restrict xAxis,
+                     const float* __restrict yAxis, const float* __restrict field, const int* __restrict rowBegin,
+                     const int* __restrict rowEnd, int n, float r, float cl, float cs, float push, float px, float py)
+{
+    constexpr int lanes = SNARESIM_VECTOR_BYTES / (int) sizeof(float);
+    using V = float __attribute__((vector_size(SNARESIM_VECTOR_BYTES)));
+    V lane {};
+    for (int i = 0; i < lanes; ++i)
+        lane[i] = (float) i;
+    for (int iy = 1; iy < n - 1; ++iy)
+    {
+        const int row = iy * n, begin = rowBegin[iy], end = rowEnd[iy];
+        if (begin >= end)
+            continue;
+        const float tiltY = Tilt ? py * yAxis[iy] : 0.0f;
+        const auto at = [&](int ix) {
+            const int m = row + ix;
+            V c, l, rt, u, d, cp, lp, rp, up, dp;
+            std::memcpy(&c, w + m, sizeof c);
+            std::memcpy(&l, w + m - 1, sizeof l);
+            std::memcpy(&rt, w + m + 1, sizeof rt);
+            std::memcpy(&u, w + m - n, sizeof u);
+            std::memcpy(&d, w + m + n, sizeof d);
+            std::memcpy(&cp, wp + m, sizeof cp);
+            std::memcpy(&lp, wp + m - 1, sizeof lp);
+            std::memcpy(&rp, wp + m + 1, sizeof rp);
+            std::memcpy(&up, wp + m - n, sizeof up);
+            std::memcpy(&dp, wp + m + n, sizeof dp);
+            const V v = c - cp, nb = (l + rt) + u + d, nbp = (lp + rp) + up + dp;
+            V p = V {} + push;
+            if constexpr (Field)
+            {
+                V f;
+                std::memcpy(&f, field + m, sizeof f);
+                p += f;
+            }
+            V next = c + (r * v + cl * (nb - 4.0f * c) + cs * ((nb - nbp) - 4.0f * v) + p);
+            if constexpr (Tilt)
+            {
+                V x;
+                std::memcpy(&x, xAxis + ix, sizeof x);
+                next += px * x + tiltY;
+            }
+            return next;
+        };
+        if (end - begin >= lanes)
+        {
+            int ix = begin;
+            for (; ix + lanes <= end; ix += lanes)
+            {
+                const V next = at(ix);
+                std::memcpy(out + row + ix, &next, sizeof next);
+            }
+            if (ix < end)
+            {
+                const V next = at(end - lanes);
+                std::memcpy(out + row + end - lanes, &next, sizeof next);
+            }
+        }
+        else if (lanes <= n - 2) // one vector inside the padded row, zero off the disc
+        {
+            const int start = std::min(begin, n - 1 - lanes);
+            const V ix = lane + (float) start;
+            const V keep = __builtin_convertvector(-((ix >= (float) begin) & (ix < (float) end)), V); // 1 on the disc, else 0
+            const V next = at(start) * keep;
+            std::memcpy(out + row + start, &next, sizeof next);
+        }
+        else // a grid narrower than a vector: node by node
+            for (int ix = begin; ix < end; ++ix)
+            {
+                const int m = row + ix;
+                const float c = w[m], v = c - wp[m];
+                const float nb = (w[m - 1] + w[m + 1]) + w[m - n] + w[m + n];
+                const float nbp = (wp[m - 1] + wp[m + 1]) + wp[m - n] + wp[m + n];
+                float p = push;
+                if constexpr (Field)
+                    p += field[m];
+                float next = c + (r * v + cl * (nb - 4.0f * c) + cs * ((nb - nbp) - 4.0f * v) + p);
+                if constexpr (Tilt)
+                    next += px * xAxis[ix] + tiltY;
+                out[m] = next;
+            }
+    }
 }
 // sum(xs w), sum(ys w) over count nodes, in double (vector lanes).
 template <class Real>
@@ -204,6 +290,20 @@ void sumBlocks(const Real* __restrict w, int n, double* __restrict acc, double* 
 // Rows: the band's rows, a constant where it is Side (0: any, `rows`).
 using DoubleVector = double __attribute__((vector_size(SNARESIM_VECTOR_BYTES)));
 using DoubleVectorFloats = float __attribute__((vector_size(SNARESIM_VECTOR_BYTES / 2))); // a DoubleVector's lanes in float
+// A DoubleVector's lanes of floats at p, widened: one conversion from memory on the wide
+// targets (GCC splits __builtin_convertvector there into halves and reassembles them).
+inline DoubleVector widenFloats(const float* p)
+{
+#if SNARESIM_VECTOR_TARGETS && SNARESIM_VECTOR_BYTES == 64
+    return (DoubleVector) _mm512_maskz_cvtps_pd((__mmask8) -1, _mm256_loadu_ps(p)); // _mm512_cvtps_pd: a false GCC 12 warning
+#elif SNARESIM_VECTOR_TARGETS && SNARESIM_VECTOR_BYTES == 32
+    return (DoubleVector) _mm256_cvtps_pd(_mm_loadu_ps(p));
+#else
+    DoubleVectorFloats r;
+    std::memcpy(&r, p, sizeof r);
+    return __builtin_convertvector(r, DoubleVector);
+#endif
+}
 template <int Rows, bool Moments>
 void sumBand(const float* __restrict row0, int n, int rows, const double* __restrict xs, const double* __restrict y,
              double* __restrict band, DoubleVector& total, DoubleVector& sx, DoubleVector& sy)
@@ -214,13 +314,10 @@ void sumBand(const float* __restrict row0, int n, int rows, const double* __rest
     for (int start = 0; start < n; start += lanes)
     {
         const int ix = std::min(start, n - lanes);
-        DoubleVectorFloats r;
-        std::memcpy(&r, row0 + (size_t) ix, sizeof r);
-        V v = __builtin_convertvector(r, V), b = v, t = y[0] * v;
+        V v = widenFloats(row0 + (size_t) ix), b = v, t = y[0] * v;
         for (int k = 1; k < count; ++k)
         {
-            std::memcpy(&r, row0 + (size_t) k * (size_t) n + (size_t) ix, sizeof r);
-            v = __builtin_convertvector(r, V);
+            v = widenFloats(row0 + (size_t) k * (size_t) n + (size_t) ix);
             b += v;
             t += y[k] * v;
         }
