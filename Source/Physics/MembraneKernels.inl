@@ -5,8 +5,10 @@
 // rowBegin[iy] .. rowEnd[iy] - 1, all inside the disc: out = c0 w + c1 (4 neighbours of w) + d0 wp
 // + d1 (4 neighbours of wp) + push (+ px xs[m] + py y with Tilt, + field[m] with Field). Returns
 // the sum of out, and with Tilt sets sx, sy to sum(xs out), sum(y out) (ys: y by row). A vector
-// of nodes at a time along each row, the rest one by one: the sums stay in vector lanes over
-// every row and are added across the lanes once, at the end (no row's own sum is formed).
+// of nodes at a time along each row; a row's last vector ends at the row's end, over the one
+// before (out is written twice with the same values there, and its lanes already summed count
+// nothing), so only rows shorter than a vector go node by node. The sums stay in vector lanes
+// over every row and are added across the lanes once, at the end (no row's own sum is formed).
 template <bool Tilt, bool Field>
 double updateRows(double* __restrict out, const double* __restrict w, const double* __restrict wp, const double* __restrict field,
                   const double* __restrict xs, const double* __restrict ys, const int* __restrict rowBegin, const int* __restrict rowEnd,
@@ -16,47 +18,70 @@ double updateRows(double* __restrict out, const double* __restrict w, const doub
     using V = double __attribute__((vector_size(SNARESIM_VECTOR_BYTES)));
     V vs = {}, vx = {}, vy = {};
     double ts = 0.0, tx = 0.0, ty = 0.0;
+    V lane {};
+    for (int i = 0; i < lanes; ++i)
+        lane[i] = (double) i;
+    const auto at = [&](int m, double p, V& x) {
+        V c, l, r, u, d, cp, lp, rp, up, dp, next;
+        std::memcpy(&c, w + m, sizeof c);
+        std::memcpy(&l, w + m - 1, sizeof l);
+        std::memcpy(&r, w + m + 1, sizeof r);
+        std::memcpy(&u, w + m - n, sizeof u);
+        std::memcpy(&d, w + m + n, sizeof d);
+        std::memcpy(&cp, wp + m, sizeof cp);
+        std::memcpy(&lp, wp + m - 1, sizeof lp);
+        std::memcpy(&rp, wp + m + 1, sizeof rp);
+        std::memcpy(&up, wp + m - n, sizeof up);
+        std::memcpy(&dp, wp + m + n, sizeof dp);
+        const V nb = l + r + u + d;
+        const V nbp = lp + rp + up + dp;
+        if constexpr (Tilt)
+        {
+            std::memcpy(&x, xs + m, sizeof x);
+            next = c0 * c + c1 * nb + d0 * cp + d1 * nbp + (p + px * x);
+        }
+        else
+            next = c0 * c + c1 * nb + d0 * cp + d1 * nbp + p;
+        if constexpr (Field)
+        {
+            V f;
+            std::memcpy(&f, field + m, sizeof f);
+            next += f;
+        }
+        std::memcpy(out + m, &next, sizeof next);
+        return next;
+    };
     for (int iy = 1; iy < n - 1; ++iy)
     {
-        const int end = iy * n + rowEnd[iy];
+        const int begin = iy * n + rowBegin[iy], end = iy * n + rowEnd[iy];
         const double y = ys[iy];
         const double p = Tilt ? push + py * y : push;
-        int m = iy * n + rowBegin[iy];
+        int m = begin;
+        V x {};
         for (; m + lanes <= end; m += lanes)
         {
-            V c, l, r, u, d, cp, lp, rp, up, dp, x, next;
-            std::memcpy(&c, w + m, sizeof c);
-            std::memcpy(&l, w + m - 1, sizeof l);
-            std::memcpy(&r, w + m + 1, sizeof r);
-            std::memcpy(&u, w + m - n, sizeof u);
-            std::memcpy(&d, w + m + n, sizeof d);
-            std::memcpy(&cp, wp + m, sizeof cp);
-            std::memcpy(&lp, wp + m - 1, sizeof lp);
-            std::memcpy(&rp, wp + m + 1, sizeof rp);
-            std::memcpy(&up, wp + m - n, sizeof up);
-            std::memcpy(&dp, wp + m + n, sizeof dp);
-            const V nb = l + r + u + d;
-            const V nbp = lp + rp + up + dp;
-            if constexpr (Tilt)
-            {
-                std::memcpy(&x, xs + m, sizeof x);
-                next = c0 * c + c1 * nb + d0 * cp + d1 * nbp + (p + px * x);
-            }
-            else
-                next = c0 * c + c1 * nb + d0 * cp + d1 * nbp + p;
-            if constexpr (Field)
-            {
-                V f;
-                std::memcpy(&f, field + m, sizeof f);
-                next += f;
-            }
-            std::memcpy(out + m, &next, sizeof next);
+            const V next = at(m, p, x);
             vs += next;
             if constexpr (Tilt)
             {
                 vx += x * next;
                 vy += y * next;
             }
+        }
+        if (m == end)
+            continue;
+        if (end - begin >= lanes) // the last vector, over the one before
+        {
+            const int last = end - lanes;
+            const V keep = __builtin_convertvector(-(lane >= (double) (m - last)), V); // 1 for the lanes not summed yet
+            const V next = at(last, p, x) * keep;
+            vs += next;
+            if constexpr (Tilt)
+            {
+                vx += x * next;
+                vy += y * next;
+            }
+            continue;
         }
         for (; m < end; ++m)
         {
@@ -78,11 +103,11 @@ double updateRows(double* __restrict out, const double* __restrict w, const doub
             }
         }
     }
-    for (int lane = 0; lane < lanes; ++lane)
+    for (int i = 0; i < lanes; ++i)
     {
-        ts += vs[lane];
-        tx += vx[lane];
-        ty += vy[lane];
+        ts += vs[i];
+        tx += vx[i];
+        ty += vy[i];
     }
     sx = tx;
     sy = ty;
