@@ -97,6 +97,7 @@ PressureMicrophones::PressureMicrophones(const MicSpec& spec, const CavitySpec& 
         l.runEnd.resize((size_t) rows);
         l.count.resize((size_t) rows);
         l.direct.assign((size_t) rows * kLanes, 0.0f);
+        l.directNear = l.direct;
         l.around.assign((size_t) rows, 0.0);
     }
     sourceRows.assign(sources * kLanes, 0.0f);
@@ -191,6 +192,7 @@ void PressureMicrophones::place(Listener& l, const AirPoint& p) noexcept
         l.count[(size_t) d] = begin; // the run's next free slot
     }
     l.delays = std::min(l.delays, (int) (tileNow.size() / (kLanes * kLanes))); // cannot bind (the tiles' length, above)
+    l.nearRuns = std::clamp(kFar - l.firstDelay, 0, l.delays);
     for (int j = 0; j < cellTaps; ++j)
     {
         const Tap& t = l.taps[(size_t) j];
@@ -241,27 +243,54 @@ void PressureMicrophones::setLongestBlock(int steps) noexcept
 
 void PressureMicrophones::beginBlocks() noexcept
 {
-    int shortest = rows;
+    int shortestNear = kFar, shortestFar = rows;
     for (const Listener& l : mics)
-        shortest = std::min(shortest, l.firstDelay);
-    span = std::clamp(shortest + 1, 1, longestBlock);
+    {
+        if (l.nearRuns > 0)
+            shortestNear = std::min(shortestNear, l.firstDelay);
+        if (l.delays > l.nearRuns)
+            shortestFar = std::min(shortestFar, l.firstDelay + l.nearRuns);
+    }
+    span = std::clamp(shortestFar + 1, 1, longestBlock);
+    nearSpan = std::clamp(shortestNear + 1, 1, span);
     filled = 0;
+    nearDone = 0;
+}
+
+void PressureMicrophones::sumNear() noexcept
+{
+    if (filled > nearDone)
+        for (Listener& l : mics)
+            if (l.nearRuns > 0)
+            {
+                SNARESIM_ON_VECTOR_TARGET(sumTapBlock<kLanes>)
+                (0, l.nearRuns, l.runEnd.data(), l.cell.data(), l.now.data(), l.next.data(), sourceRows.data(), tileNow.data(),
+                 tileNext.data());
+                SNARESIM_ON_VECTOR_TARGET(addTapTiles<kLanes>)
+                (l.nearRuns, nearDone, filled, tileNow.data(), tileNext.data(), l.directNear.data(),
+                 (size_t) blockSlot + (size_t) l.firstDelay, (size_t) rows - 1);
+            }
+    nearDone = filled;
 }
 
 void PressureMicrophones::sumBlock() noexcept
 {
+    sumNear();
     if (filled > 0)
     {
         for (Listener& l : mics) // the rows' steps from `filled` on are not added
-        {
-            SNARESIM_ON_VECTOR_TARGET(sumTapBlock<kLanes>)
-            (l.delays, l.runEnd.data(), l.cell.data(), l.now.data(), l.next.data(), sourceRows.data(), tileNow.data(), tileNext.data());
-            SNARESIM_ON_VECTOR_TARGET(addTapTiles<kLanes>)
-            (l.delays, filled, tileNow.data(), tileNext.data(), l.direct.data(), (size_t) blockSlot + (size_t) l.firstDelay,
-             (size_t) rows - 1);
-        }
+            if (l.delays > l.nearRuns)
+            {
+                SNARESIM_ON_VECTOR_TARGET(sumTapBlock<kLanes>)
+                (l.nearRuns, l.delays, l.runEnd.data(), l.cell.data(), l.now.data(), l.next.data(), sourceRows.data(), tileNow.data(),
+                 tileNext.data());
+                SNARESIM_ON_VECTOR_TARGET(addTapTiles<kLanes>)
+                (l.delays - l.nearRuns, 0, filled, tileNow.data(), tileNext.data(), l.direct.data(),
+                 (size_t) blockSlot + (size_t) (l.firstDelay + l.nearRuns), (size_t) rows - 1);
+            }
     }
     filled = 0;
+    nearDone = 0;
 }
 
 void PressureMicrophones::push(AlignedVector<double>& ring, const Tap& t, double value) const noexcept
@@ -305,6 +334,8 @@ void PressureMicrophones::listen(const Membrane& batter, const Membrane& carry, 
         }
     if (++filled == span)
         sumBlock();
+    else if (filled - nearDone == nearSpan)
+        sumNear();
     const size_t mask = (size_t) rows - 1;
     for (int m = 0; m < numMics; ++m)
     {
@@ -313,10 +344,14 @@ void PressureMicrophones::listen(const Membrane& batter, const Membrane& carry, 
         push(l.around, l.otherWhole, heads[(size_t) (1 - l.facing)].whole);
         const size_t here = (size_t) pos & mask;
         float* lanes = l.direct.data() + here * kLanes;
+        float* nearLanes = l.directNear.data() + here * kLanes;
         double p = 0.0;
         for (int j = 0; j < kLanes; ++j)
             p += (double) lanes[j];
+        for (int j = 0; j < kLanes; ++j)
+            p += (double) nearLanes[j];
         std::fill(lanes, lanes + kLanes, 0.0f);
+        std::fill(nearLanes, nearLanes + kLanes, 0.0f);
         const double x = l.around[here];
         l.around[here] = 0.0;
         l.lowPass += alpha * (x - l.lowPass);
@@ -336,10 +371,12 @@ void PressureMicrophones::clear() noexcept
     for (Listener& l : mics)
     {
         std::fill(l.direct.begin(), l.direct.end(), 0.0f);
+        std::fill(l.directNear.begin(), l.directNear.end(), 0.0f);
         std::fill(l.around.begin(), l.around.end(), 0.0);
         l.lowPass = 0.0;
     }
     filled = 0;
+    nearDone = 0;
     out.fill(0.0);
 }
 

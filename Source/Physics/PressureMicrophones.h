@@ -103,14 +103,18 @@ private:
     // delay. The taps are summed a block of steps at a time: each source (a head's cell, a
     // microphone's fine cell) keeps a row of kLanes floats, its A at the block's steps, and a
     // run's rows are summed at once, whole rows, no gathers, kept lane by lane (a tap's place
-    // in its run modulo kLanes) and added to the ring of the direct sound ahead (A ring of
-    // `rows` samples, kLanes floats a sample, added across the lanes when the sample is heard)
-    // in the order summing step by step would add them: the sound is the same to the last bit
-    // wherever the blocks fall. A block holds at most one step more than the microphones'
-    // shortest whole delay (`span`), so every sample is complete when it is heard: the samples
-    // it reaches lie at least that far ahead of its first step. In single precision: the taps'
-    // rounding is about 1e-7 of the sound, far below anything heard or measured.
+    // in its run modulo kLanes) and added to a ring of the direct sound ahead (a ring of `rows`
+    // samples, kLanes floats a sample, added across the lanes when the sample is heard) in the
+    // order summing step by step would add them: the sound is the same to the last bit wherever
+    // the blocks fall. A block holds at most one step more than the shortest whole delay of the
+    // taps it sums, so every sample is complete when it is heard: the samples it reaches lie at
+    // least that far ahead of its first step. The far taps (whole delays of kFar and more) are
+    // summed in blocks of kLanes steps, into a ring of their own; the near ones (a close
+    // microphone's) in the blocks their shortest delay allows, within those, into theirs. In
+    // single precision: the taps' rounding is about 1e-7 of the sound, far below anything heard
+    // or measured.
     static constexpr int kLanes = 8;
+    static constexpr int kFar = kLanes - 1;
     struct Listener
     {
         int facing = 0;
@@ -118,6 +122,7 @@ private:
         AlignedVector<float> now, next; // gain (1 - frac), gain frac: to the delay and the one after
         AlignedVector<int> runEnd;      // per delay from firstDelay: end of its run of taps
         int firstDelay = 0, delays = 0;
+        int nearRuns = 0; // the runs of whole delays under kFar
         // The cells close to the microphone, heard in fine cells (a coarse cell's sum would alias
         // the head's short waves into ones that radiate): a rectangle of the grid from node
         // (nearX, nearY), nearColumns x nearRows nodes, in fine cells.
@@ -125,7 +130,8 @@ private:
         int fineBegin = 0;                 // the first fine cell's row of A (sourceRows)
         AlignedVector<double> fine;        // the fine cells' A, as the head gives them
         Tap facingWhole {}, otherWhole {}; // the low-passed whole-head terms
-        AlignedVector<float> direct;       // ring: the direct sound ahead, kLanes partial sums a sample
+        AlignedVector<float> direct;       // ring: the far taps' direct sound ahead, kLanes partial sums a sample
+        AlignedVector<float> directNear;   // ring: the near taps' alike
         AlignedVector<double> around;      // ring: the low-pass's input, ahead
         double lowPass = 0.0;
         // scratch of place() (no allocation there)
@@ -136,6 +142,7 @@ private:
     void place(Listener& l, const AirPoint& p) noexcept;
     // the taps of the block's steps so far into the rings, a new block begun at the next step
     void sumBlock() noexcept;
+    void sumNear() noexcept;     // the near taps of the block's steps from nearDone
     void beginBlocks() noexcept; // the span from the microphones' delays, a new block
     Tap tapAt(double distance_m, double gain) const noexcept;
     void push(AlignedVector<double>& ring, const Tap& t, double value) const noexcept;
@@ -146,8 +153,10 @@ private:
     int rows = 0;            // the rings' length (a power of two), longer than every delay
     int pos = 0;             // ring slot of step n
     int longestBlock = kLanes;
-    int span = 1;                           // steps a block holds (1 .. longestBlock): the shortest whole delay plus one
+    int span = 1;                           // steps a block holds (1 .. longestBlock): the far taps' shortest whole delay plus one
+    int nearSpan = 1;                       // steps a near taps' block holds (1 .. span), within the block
     int filled = 0;                         // steps of the block so far
+    int nearDone = 0;                       // of them, summed into the near taps' ring
     int blockSlot = 0;                      // ring slot of the block's first step
     AlignedVector<float> sourceRows;        // kLanes floats a source: the heads' cells, then each microphone's fine cells
     AlignedVector<float> tileNow, tileNext; // a microphone's runs' sums in a block, per delay, step and lane (sumTapBlock)

@@ -64,34 +64,36 @@ inline void sumRun(int begin, int end, const int* __restrict cell, const float* 
 #undef SNARESIM_SHUFFLE
 }
 
-// A microphone's taps over a block of up to Lanes (8) steps, a run per whole delay d (the steps
-// beyond the block are summed too, and not added: addTapTiles): each tap adds now * A[b] to its
-// run's sum at step b and next * A[b] to the one a sample later, into the tiles
-// tile[(d Lanes + b) Lanes + lane], for addTapTiles.
+// A microphone's runs first .. last - 1 (a run per whole delay d; the taps before the first
+// run's end at runEnd[first - 1]) over a block of up to Lanes (8) steps (the steps beyond the
+// block are summed too, and not added: addTapTiles): each tap adds now * A[b] to its run's sum
+// at step b and next * A[b] to the one a sample later, into the tiles
+// tile[((d - first) Lanes + b) Lanes + lane], for addTapTiles.
 template <int Lanes>
-void sumTapBlock(int delays, const int* __restrict runEnd, const int* __restrict cell, const float* __restrict now,
+void sumTapBlock(int first, int last, const int* __restrict runEnd, const int* __restrict cell, const float* __restrict now,
                  const float* __restrict next, const float* __restrict rows, float* __restrict tileNow, float* __restrict tileNext)
 {
     static_assert(Lanes == 8, "sumRun's rows are 8 floats");
-    int t = 0;
-    for (int d = 0; d < delays; ++d)
+    int t = first > 0 ? runEnd[first - 1] : 0;
+    for (int d = first; d < last; ++d)
     {
         const int end = runEnd[d];
-        sumRun(t, end, cell, now, rows, tileNow + (size_t) d * Lanes * Lanes);
-        sumRun(t, end, cell, next, rows, tileNext + (size_t) d * Lanes * Lanes);
+        sumRun(t, end, cell, now, rows, tileNow + (size_t) (d - first) * Lanes * Lanes);
+        sumRun(t, end, cell, next, rows, tileNext + (size_t) (d - first) * Lanes * Lanes);
         t = end;
     }
 }
 
-// The tiles of the block's `steps` steps into the ring (Lanes floats a sample): step by step,
-// and in each step run by run, the run's sums at its delay and the ones of `next` at the sample
-// after, lane by lane: the order the samples would get them step by step, so the sound does not
-// depend on where the blocks fall.
+// The tiles of the block's steps from .. to - 1 into the ring (Lanes floats a sample; slot: the
+// block's first step's ring slot plus the first run's delay): step by step, and in each step
+// run by run, the run's sums at its delay and the ones of `next` at the sample after, lane by
+// lane: the order the samples would get them step by step, so the sound does not depend on
+// where the blocks fall.
 template <int Lanes>
-void addTapTiles(int delays, int steps, const float* __restrict tileNow, const float* __restrict tileNext, float* __restrict ring,
+void addTapTiles(int delays, int from, int to, const float* __restrict tileNow, const float* __restrict tileNext, float* __restrict ring,
                  size_t slot, size_t mask)
 {
-    for (int b = 0; b < steps; ++b)
+    for (int b = from; b < to; ++b)
         for (int d = 0; d < delays; ++d)
         {
             const size_t at = slot + (size_t) b + (size_t) d;
