@@ -277,18 +277,31 @@ template <class Lap>
         if (air.active())
             air.beforeHeads(b, c); // the cavity's modes and the near field on the heads' cells
     });
+    // 2. The couplings: each solves for its forces and adds them to the free updates.
+    //    A head, then what acts on it alone (no contact joins the two heads within a step), so
+    //    that the batter's sums are taken while its state is in cache.
+    ContactSolves solves;
+    auto onHead = [&](auto head) {
+        contacts.each([&](auto& contact) {
+            if constexpr (std::decay_t<decltype(contact)>::head == std::decay_t<decltype(head)>::value)
+                contact.computeFree(lap); // the mallets (eq. 43), the wires (eq. 28)
+        });
+        contacts.each([&](auto& contact) {
+            if constexpr (std::decay_t<decltype(contact)>::head == std::decay_t<decltype(head)>::value)
+            {
+                contact.solve(solves); // eq. (44)-(45), (48)-(50)
+                contact.lapSolve(lap);
+            }
+        });
+    };
     batterHead.computeFree(cavityCoupling.pressureOnBatter() + b.p0, b.px, b.py); // eq. (22) without the contact force
+    lap(StepPhase::batterFree);
+    onHead(std::integral_constant<int, 0> {});
+    batterHead.takeSumsNow();
     lap(StepPhase::batterFree);
     carryHead.computeFree(cavityCoupling.pressureOnCarry() + c.p0, c.px, c.py); // eq. (23) without snare and end forces
     lap(StepPhase::carryFree);
-    contacts.each([&](auto& contact) { contact.computeFree(lap); }); // the mallets (eq. 43), the wires (eq. 28)
-
-    // 2. The couplings: each solves for its forces and adds them to the free updates.
-    ContactSolves solves;
-    contacts.each([&](auto& contact) {
-        contact.solve(solves); // eq. (44)-(45), (48)-(50)
-        contact.lapSolve(lap);
-    });
+    onHead(std::integral_constant<int, 1> {});
     noteSolves(solves);
 }
 

@@ -58,6 +58,12 @@ public:
     // state as it is, with the blocks' sums of this side on the way (takenBlockSums). The double
     // state keeps its running sums: this does nothing there.
     void takeSumsWithBlocks(int side);
+    // Take those sums now, once every force of the step is in (while the state is in cache).
+    void takeSumsNow() const
+    {
+        if (sumsStale)
+            takeSums();
+    }
     // blockSumsNext's sums at this side when they come with the taken sums, else nullptr.
     const double* takenBlockSums(int side) const
     {
