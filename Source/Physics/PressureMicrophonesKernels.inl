@@ -1,37 +1,13 @@
 // The microphones' loops (the cells' volume accelerations each step, the taps' sums each block),
 // compiled once per vector target by PerVectorTarget.inl: no include guard, no includes.
 
-// One run's taps with one gain each (taps begin .. end - 1) over a block of up to 8 steps: each
-// tap's source row holds its A at the block's steps, so the tap adds gain * A[b] to the run's sum
-// at step b, whole rows, no gathers, kept by lane (the tap's place in the run modulo 8) and step,
-// 8 rows of sums in registers; the taps of a lane add in their order. Into tile[b 8 + lane]
-// (transposed in registers).
-inline void sumRun(int begin, int end, const int* __restrict cell, const float* __restrict gain, const float* __restrict rows,
-                   float* __restrict tile)
-{
-    using Row = float __attribute__((vector_size(32)));
-    Row s[8] = {}; // s[lane][step]
-    int c = begin;
-    for (; c + 8 <= end; c += 8)
-    {
-#pragma GCC unroll 8
-        for (int lane = 0; lane < 8; ++lane)
-        {
-            Row a;
-            std::memcpy(&a, rows + (size_t) cell[c + lane] * 8, sizeof a);
-            s[lane] += gain[c + lane] * a;
-        }
-    }
-#pragma GCC unroll 8
-    for (int lane = 0; lane < 8; ++lane) // the last round's (a constant lane keeps the sums in registers)
-        if (c + lane < end)
-        {
-            Row a;
-            std::memcpy(&a, rows + (size_t) cell[c + lane] * 8, sizeof a);
-            s[lane] += gain[c + lane] * a;
-        }
+using TapRow = float __attribute__((vector_size(32))); // a source's A at a block's 8 steps
 
-    // 8 x 8 transpose: pairs of rows interleaved by 1, 2 and 4 floats
+// s[lane][step] into tile[step 8 + lane]: an 8 x 8 transpose in registers.
+inline void storeTransposed(const TapRow* s, float* __restrict tile)
+{
+    using Row = TapRow;
+    // pairs of rows interleaved by 1, 2 and 4 floats
     using Index = int __attribute__((vector_size(32)));
 #if defined(__clang__)
 #define SNARESIM_SHUFFLE(x, y, ...) __builtin_shufflevector(x, y, __VA_ARGS__)
@@ -64,6 +40,45 @@ inline void sumRun(int begin, int end, const int* __restrict cell, const float* 
 #undef SNARESIM_SHUFFLE
 }
 
+// One run's taps (taps begin .. end - 1) over a block of up to 8 steps: each tap's source row
+// holds its A at the block's steps, so the tap adds gain * A[b] to the run's sum at step b, whole
+// rows, no gathers, kept by lane (the tap's place in the run modulo 8) and step, 8 rows of sums
+// in registers; the taps of a lane add in their order. Into tile[b 8 + lane]. With Next, the
+// gains `next` at once, from the same rows, into tileNext (16 rows of sums: wide targets only).
+template <bool Next>
+void sumRun(int begin, int end, const int* __restrict cell, const float* __restrict gain, const float* __restrict next,
+            const float* __restrict rows, float* __restrict tile, float* __restrict tileNext)
+{
+    using Row = TapRow;
+    Row s[8] = {}, x[8] = {}; // s[lane][step]
+    int c = begin;
+    for (; c + 8 <= end; c += 8)
+    {
+#pragma GCC unroll 8
+        for (int lane = 0; lane < 8; ++lane)
+        {
+            Row a;
+            std::memcpy(&a, rows + (size_t) cell[c + lane] * 8, sizeof a);
+            s[lane] += gain[c + lane] * a;
+            if constexpr (Next)
+                x[lane] += next[c + lane] * a;
+        }
+    }
+#pragma GCC unroll 8
+    for (int lane = 0; lane < 8; ++lane) // the last round's (a constant lane keeps the sums in registers)
+        if (c + lane < end)
+        {
+            Row a;
+            std::memcpy(&a, rows + (size_t) cell[c + lane] * 8, sizeof a);
+            s[lane] += gain[c + lane] * a;
+            if constexpr (Next)
+                x[lane] += next[c + lane] * a;
+        }
+    storeTransposed(s, tile);
+    if constexpr (Next)
+        storeTransposed(x, tileNext);
+}
+
 // A microphone's runs first .. last - 1 (a run per whole delay d; the taps before the first
 // run's end at runEnd[first - 1]) over a block of up to Lanes (8) steps (the steps beyond the
 // block are summed too, and not added: addTapTiles): each tap adds now * A[b] to its run's sum
@@ -78,8 +93,14 @@ void sumTapBlock(int first, int last, const int* __restrict runEnd, const int* _
     for (int d = first; d < last; ++d)
     {
         const int end = runEnd[d];
-        sumRun(t, end, cell, now, rows, tileNow + (size_t) (d - first) * Lanes * Lanes);
-        sumRun(t, end, cell, next, rows, tileNext + (size_t) (d - first) * Lanes * Lanes);
+        float* n = tileNow + (size_t) (d - first) * Lanes * Lanes;
+        float* x = tileNext + (size_t) (d - first) * Lanes * Lanes;
+#if SNARESIM_VECTOR_BYTES >= 64 // 32 vector registers: both gains' sums in one pass over the rows
+        sumRun<true>(t, end, cell, now, next, rows, n, x);
+#else
+        sumRun<false>(t, end, cell, now, nullptr, rows, n, nullptr);
+        sumRun<false>(t, end, cell, next, nullptr, rows, x, nullptr);
+#endif
         t = end;
     }
 }
