@@ -277,11 +277,12 @@ template <class Lap>
         if (air.active())
             air.beforeHeads(b, c); // the cavity's modes and the near field on the heads' cells
     });
-    // 2. The couplings: each solves for its forces and adds them to the free updates.
-    //    A head, then what acts on it alone (no contact joins the two heads within a step), so
-    //    that the batter's sums are taken while its state is in cache.
+    // 2. The couplings: each solves for its forces and adds them to the free updates. Steps 1
+    //    and 2 run head by head: a head's free update, then the components acting on it alone
+    //    and their contacts (no contact joins the two heads within a step), so that the
+    //    batter's sums are taken while its state is in cache.
     ContactSolves solves;
-    auto onHead = [&](auto head) {
+    auto onHead = [&](auto head) { // the contacts on this head: their free updates, then their solves
         contacts.each([&](auto& contact) {
             if constexpr (std::decay_t<decltype(contact)>::head == std::decay_t<decltype(head)>::value)
                 contact.computeFree(lap); // the mallets (eq. 43), the wires (eq. 28)

@@ -15,7 +15,7 @@ namespace snaresim
 
 enum class StepPhase
 {
-    batterFree,    // the batter's free update (eq. 22 without the contact force)
+    batterFree,    // the batter's free update (eq. 22 without the contact force); cavity path: and its sums, taken after the mallets' solve
     carryFree,     // the carry head's (eq. 23 without the snares' forces)
     wiresFree,     // the wires' free update (eq. 28 without the collision's forces)
     malletsFree,   // the mallets' free update (eq. 43), and the rising ones taken back

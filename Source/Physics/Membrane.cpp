@@ -221,8 +221,7 @@ void Membrane::computeFree(double p0, double px, double py)
 
 std::array<double, 2> Membrane::tiltNext() const
 {
-    if (sumsStale)
-        takeSums();
+    takeSumsNow();
     if (momentsKept)
         return { h * h * xSumNext, h * h * ySumNext };
     const int n = g.width();

@@ -69,8 +69,7 @@ public:
     {
         if (side != sumSide)
             return nullptr;
-        if (sumsStale)
-            takeSums();
+        takeSumsNow();
         return sideSums.data();
     }
     // sum(w^{n+1}) over square blocks of side x side nodes (block (bx, by) holds the nodes with
@@ -151,8 +150,7 @@ public:
     // force updates; or taken once the forces are in: takeSumsWithBlocks).
     double sweptVolumeNext() const
     {
-        if (sumsStale)
-            takeSums();
+        takeSumsNow();
         return h * h * sumNext;
     }
 

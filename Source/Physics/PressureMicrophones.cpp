@@ -257,19 +257,21 @@ void PressureMicrophones::beginBlocks() noexcept
     nearDone = 0;
 }
 
+void PressureMicrophones::addRuns(Listener& l, int first, int last, int from, AlignedVector<float>& ring) noexcept
+{
+    SNARESIM_ON_VECTOR_TARGET(sumTapBlock<kLanes>)
+    (first, last, l.runEnd.data(), l.cell.data(), l.now.data(), l.next.data(), sourceRows.data(), tileNow.data(), tileNext.data());
+    SNARESIM_ON_VECTOR_TARGET(addTapTiles<kLanes>)
+    (last - first, from, filled, tileNow.data(), tileNext.data(), ring.data(), (size_t) blockSlot + (size_t) (l.firstDelay + first),
+     (size_t) rows - 1);
+}
+
 void PressureMicrophones::sumNear() noexcept
 {
     if (filled > nearDone)
         for (Listener& l : mics)
             if (l.nearRuns > 0)
-            {
-                SNARESIM_ON_VECTOR_TARGET(sumTapBlock<kLanes>)
-                (0, l.nearRuns, l.runEnd.data(), l.cell.data(), l.now.data(), l.next.data(), sourceRows.data(), tileNow.data(),
-                 tileNext.data());
-                SNARESIM_ON_VECTOR_TARGET(addTapTiles<kLanes>)
-                (l.nearRuns, nearDone, filled, tileNow.data(), tileNext.data(), l.directNear.data(),
-                 (size_t) blockSlot + (size_t) l.firstDelay, (size_t) rows - 1);
-            }
+                addRuns(l, 0, l.nearRuns, nearDone, l.directNear);
     nearDone = filled;
 }
 
@@ -277,18 +279,9 @@ void PressureMicrophones::sumBlock() noexcept
 {
     sumNear();
     if (filled > 0)
-    {
         for (Listener& l : mics) // the rows' steps from `filled` on are not added
             if (l.delays > l.nearRuns)
-            {
-                SNARESIM_ON_VECTOR_TARGET(sumTapBlock<kLanes>)
-                (l.nearRuns, l.delays, l.runEnd.data(), l.cell.data(), l.now.data(), l.next.data(), sourceRows.data(), tileNow.data(),
-                 tileNext.data());
-                SNARESIM_ON_VECTOR_TARGET(addTapTiles<kLanes>)
-                (l.delays - l.nearRuns, 0, filled, tileNow.data(), tileNext.data(), l.direct.data(),
-                 (size_t) blockSlot + (size_t) (l.firstDelay + l.nearRuns), (size_t) rows - 1);
-            }
-    }
+                addRuns(l, l.nearRuns, l.delays, 0, l.direct);
     filled = 0;
     nearDone = 0;
 }

@@ -142,7 +142,9 @@ private:
     void place(Listener& l, const AirPoint& p) noexcept;
     // the taps of the block's steps so far into the rings, a new block begun at the next step
     void sumBlock() noexcept;
-    void sumNear() noexcept;     // the near taps of the block's steps from nearDone
+    void sumNear() noexcept; // the near taps of the block's steps from nearDone
+    // runs first .. last - 1 of l over the block's steps from .. filled - 1, into ring
+    void addRuns(Listener& l, int first, int last, int from, AlignedVector<float>& ring) noexcept;
     void beginBlocks() noexcept; // the span from the microphones' delays, a new block
     Tap tapAt(double distance_m, double gain) const noexcept;
     void push(AlignedVector<double>& ring, const Tap& t, double value) const noexcept;
