@@ -10,6 +10,10 @@
 #include <map>
 #include <stdexcept>
 
+#if SNARESIM_VECTOR_TARGETS
+#include <immintrin.h>
+#endif
+
 namespace snaresim
 {
 
@@ -87,9 +91,14 @@ SnareContact::SnareContact(const SnareSpec& spec, SnareWires& wires, Membrane& c
     wireInterior = M - 1;
     for (auto* v : { &groupW0, &groupCc, &groupW })
         v->assign(groupNode.size(), 0.0);
-    for (auto* v : { &gq, &alphaQ, &betaQ, &uFree, &dampQ, &pointW0, &pointCc, &pointS, &pointW, &solveXiPrev, &solveXiNow, &solveXiNext,
-                     &solvePsi, &solveDropped })
+    for (auto* v : { &gq, &alphaQ, &betaQ, &uFree, &dampQ, &solveXiPrev, &solveXiNow, &solveXiNext, &solvePsi, &solveDropped })
         v->assign(numPoints, 0.0);
+    pointGroup.assign(numPoints, 0);
+    solvePointGroup.assign(numPoints, 0);
+    for (const SizeClass& c : classes)
+        for (int j = 0; j < c.size; ++j)
+            for (int i = 0; i < c.groupCount; ++i)
+                pointGroup[(size_t) (c.pointBegin + j * c.groupCount + i)] = c.groupBegin + i;
     for (auto* v : { &solveGroupW0, &solveGroupCc, &solveGroupS, &solveGroupW })
         v->assign(groupNode.size(), 0.0);
     groupReach.assign(groupNode.size(), 0.0);
@@ -146,15 +155,8 @@ namespace
 #include "PerVectorTarget.inl"
 } // namespace
 
-void SnareContact::expandToPoints(const std::vector<SizeClass>& layout, const double* perGroup, double* perPoint)
-{
-    for (const SizeClass& c : layout)
-        for (int j = 0; j < c.size; ++j)
-            std::memcpy(perPoint + c.pointBegin + j * c.groupCount, perGroup + c.groupBegin, sizeof(double) * (size_t) c.groupCount);
-}
-
 void SnareContact::coefficients(int count, const int* wireNode, const double* xiBefore, const double* xiAt, const double* psiBefore,
-                                const double* W0, const double* cc, double gammaS, const double* u)
+                                const int* group, const double* W0, const double* cc, double gammaS, const double* u)
 {
     // f = A + B xi^{n+1} with B = g^2/4 + D, A = g psi^{n-1/2} - B xi^{n-1}, and
     // xi^{n+1} = xi* - gammaS f - cc h_s S, S = sum f over the group. Eliminating xi^{n+1}:
@@ -166,14 +168,14 @@ void SnareContact::coefficients(int count, const int* wireNode, const double* xi
     {
         const auto kernel =
             damped ? SNARESIM_ON_VECTOR_TARGET(hertzCoefficients<true>) : SNARESIM_ON_VECTOR_TARGET(hertzCoefficients<false>);
-        kernel(count, wireNode, xiBefore, xiAt, u, psiBefore, W0, cc, hs, psiScale, gammaS, dampingPerStep * law.kappa, gq.data(),
+        kernel(count, wireNode, xiBefore, xiAt, u, psiBefore, group, W0, cc, hs, psiScale, gammaS, dampingPerStep * law.kappa, gq.data(),
                alphaQ.data(), betaQ.data(), uFree.data(), dampQ.data());
         return;
     }
     for (int t = 0; t < count; ++t)
     {
         const double us = u[wireNode[t]], a = xiBefore[t];
-        const double predicted = us - W0[t];
+        const double predicted = us - W0[group[t]];
         const double gp = psiSlope(a, predicted);
         double B = 0.25 * gp * gp;
         if (damped)
@@ -184,7 +186,7 @@ void SnareContact::coefficients(int count, const int* wireNode, const double* xi
         const double d = 1.0 / (1.0 + gammaS * B);
         gq[(size_t) t] = gp;
         alphaQ[(size_t) t] = (gp * psiBefore[t] + B * (predicted - a)) * d;
-        betaQ[(size_t) t] = cc[t] * hs * B * d;
+        betaQ[(size_t) t] = cc[group[t]] * hs * B * d;
         uFree[(size_t) t] = us;
     }
 }
@@ -209,9 +211,9 @@ SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wire
 
     // Per point: g^n is the slope of psi(xi) = sqrt(2 Phi(xi)) from xi^{n-1} to the prediction
     // xi* = u* - W0 (no contact force), so psi follows sqrt(2 Phi) closely where the prediction
-    // is good, and g = 0 (no force, psi stays zero) where both are apart. Each point's group's
-    // W0 beside it (member j of a class holds the class's groups in order: a copy per member),
-    // so that every per-point loop runs once over all points.
+    // is good, and g = 0 (no force, psi stays zero) where both are apart. Each point reads its
+    // group's W0 by the group's index (pointGroup, solvePointGroup), so that every per-point loop runs
+    // once over all points.
     const int n = (int) pointWireNode.size();
     // The groups holding a point that takes part, and those holding wire ends (their node moves
     // with the ends), are solved; the others keep xi* and their free node, as their solve would
@@ -247,7 +249,10 @@ SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wire
             int t = a.pointBegin;
             for (int j = 0; j < c.size; ++j)
                 for (int g = a.groupBegin; g < a.groupBegin + a.groupCount; ++g)
-                    activePoints[(size_t) t++] = c.pointBegin + j * c.groupCount + (activeGroups[(size_t) g] - c.groupBegin);
+                {
+                    activePoints[(size_t) t] = c.pointBegin + j * c.groupCount + (activeGroups[(size_t) g] - c.groupBegin);
+                    solvePointGroup[(size_t) t++] = g;
+                }
         }
     const int m = whole ? n : solvedPoints;
     lastSolvedPoints = m;
@@ -255,6 +260,7 @@ SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wire
     const int* point = activePoints.data();
     const std::vector<SizeClass>& layout = whole ? classes : activeClasses;
     const int* wireNode = pointWireNode.data();
+    const int* ofPoint = whole ? pointGroup.data() : solvePointGroup.data(); // each point's group in the solve's group arrays
     const double *before = xiPrev.data(), *now = xiNow.data(), *W0 = groupW0.data(), *cc = groupCc.data();
     double *psiSolved = psiQ.data(), *xiSolved = xiNext.data(), *W = groupW.data();
     if (! whole)
@@ -275,9 +281,7 @@ SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wire
         xiSolved = solveXiNext.data();
         W = solveGroupW.data();
     }
-    expandToPoints(layout, W0, pointW0.data());
-    expandToPoints(layout, cc, pointCc.data());
-    coefficients(m, wireNode, before, now, psiSolved, pointW0.data(), pointCc.data(), gammaS, u);
+    coefficients(m, wireNode, before, now, psiSolved, ofPoint, W0, cc, gammaS, u);
 
     // Per group: S = sum alpha / (1 + sum beta) and W; then the node and the ends (eq. 32a).
     // Only the solved groups' nodes are written (the others keep their free value W0), keyed by
@@ -295,11 +299,9 @@ SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wire
             u[endWireNode[(size_t) groupEnds[(size_t) e]]] = groupW[(size_t) g];
 
     // Per point: the force, the wire, the gap and psi at n+1/2, put back in place.
-    expandToPoints(layout, solveGroupS.data(), pointS.data());
-    expandToPoints(layout, W, pointW.data());
     const auto finish =
         dampingPerStep > 0.0 ? SNARESIM_ON_VECTOR_TARGET(finishPoints<true>) : SNARESIM_ON_VECTOR_TARGET(finishPoints<false>);
-    finish(m, alphaQ.data(), betaQ.data(), gq.data(), pointS.data(), pointW.data(), gammaS, before, now, dampQ.data(), uFree.data(),
+    finish(m, alphaQ.data(), betaQ.data(), gq.data(), ofPoint, solveGroupS.data(), W, gammaS, before, now, dampQ.data(), uFree.data(),
            xiSolved, psiSolved, solveDropped.data());
     SNARESIM_ON_VECTOR_TARGET(scatterPoints)(m, wireNode, uFree.data(), u);
     if (! whole)

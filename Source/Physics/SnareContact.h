@@ -14,8 +14,7 @@
 // points stores its points member-major (member j of group i at j G + i), so that every
 // per-point and per-group loop of the quadratised solve runs over contiguous arrays and
 // vectorises: the per-group sums member by member over the class, the per-point loops once over
-// all points with their groups' values copied beside them (a block copy per member), with one
-// gather (the wire node) per point.
+// all points, each reading its wire node's and its group's values by index (pointGroup).
 //
 // Two schemes for the collision term (SnareSpec::scheme):
 // - newton: the paper's eq. (30), f = (Phi(xi^{n+1}) - Phi(xi^{n-1})) / (xi^{n+1} - xi^{n-1}),
@@ -176,7 +175,8 @@ private:
     // alpha, beta, u*
     AlignedVector<double> groupW0, groupCc, groupW;
     AlignedVector<double> gq, alphaQ, betaQ, uFree, dampQ;  // dampQ: D per point
-    AlignedVector<double> pointW0, pointCc, pointS, pointW; // each point's group's W0, c', S, W
+    // each point's group: every point's (class layout), the solved points' (in the solve's groups)
+    AlignedVector<int> pointGroup, solvePointGroup;
     // The solve's subset: per group its reach (predictClass: positive when it takes part), the
     // groups and points that do (the class layout over them: activeClasses), their values gathered.
     AlignedVector<double> groupReach;
@@ -186,11 +186,10 @@ private:
     AlignedVector<double> solveGroupW0, solveGroupCc, solveGroupS, solveGroupW;
     bool solveEveryPoint = false;
     int lastSolvedPoints = 0;
-    static void expandToPoints(const std::vector<SizeClass>& layout, const double* perGroup, double* perPoint);
     // alpha, beta, g, u* and D of `count` points into alphaQ, betaQ, gq, uFree and dampQ
-    // (xiBefore: xi^{n-1}, xiAt: xi^n)
-    void coefficients(int count, const int* wireNode, const double* xiBefore, const double* xiAt, const double* psiBefore, const double* W0,
-                      const double* cc, double gammaS, const double* u);
+    // (xiBefore: xi^{n-1}, xiAt: xi^n; point t's group's W0 and cc at group[t])
+    void coefficients(int count, const int* wireNode, const double* xiBefore, const double* xiAt, const double* psiBefore, const int* group,
+                      const double* W0, const double* cc, double gammaS, const double* u);
 
     SnareWires& snares;
     Membrane& head; // the carry head

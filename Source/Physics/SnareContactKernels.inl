@@ -2,9 +2,8 @@
 // vector target by PerVectorTarget.inl: no include guard, no includes.
 
 // The per-point coefficients of the quadratised solve for the Hertz exponent (beta = 1.5, so
-// psi = psiScale xi^(5/4)), for `count` points whose groups' W0 and cc are W0[k] and cc[k] (the
-// groups' values copied beside their points), branch-free so that it
-// vectorises. xi* = u* - W0 is the prediction (no contact force); g is the secant of psi from
+// psi = psiScale xi^(5/4)), for `count` points whose groups' W0 and cc are W0[group[k]] and
+// cc[group[k]], branch-free so that it vectorises. xi* = u* - W0 is the prediction (no contact force); g is the secant of psi from
 // xi^{n-1} to xi*. While both touch, with x, y their fourth roots, it is
 // (y^5 - x^5) / (y^4 - x^4) = (x^4 + x^3 y + x^2 y^2 + x y^3 + y^4) / ((x + y)(x^2 + y^2)):
 // no difference of near values, down to the tangent (5/4) x when they meet.
@@ -12,7 +11,8 @@
 // Crossley) adds D (xi^{n+1} - xi^{n-1}) to the force, so it joins B = g^2 / 4; into damp[k].
 template <bool Damped>
 void hertzCoefficients(int count, const int* __restrict wireNode, const double* __restrict xiPrev, const double* __restrict xiNow,
-                       const double* __restrict u, const double* __restrict psi, const double* __restrict W0, const double* __restrict cc,
+                       const double* __restrict u, const double* __restrict psi, const int* __restrict group, const double* __restrict W0,
+                       const double* __restrict cc,
                        double hs, double psiScale, double gammaS, double damping, double* __restrict gq, double* __restrict alpha,
                        double* __restrict beta, double* __restrict uFree, double* __restrict damp)
 {
@@ -20,7 +20,7 @@ void hertzCoefficients(int count, const int* __restrict wireNode, const double* 
     {
         const double a = xiPrev[k];
         const double us = u[wireNode[k]];
-        const double b = us - W0[k];
+        const double b = us - W0[group[k]];
         const double span = b - a;
         // g in single precision: it may be any value without breaking the energy identity
         // (header), so its rounding only perturbs the force law, by about 1e-7.
@@ -43,7 +43,7 @@ void hertzCoefficients(int count, const int* __restrict wireNode, const double* 
         const double d = 1.0 / (1.0 + gammaS * B);
         gq[k] = g;
         alpha[k] = (g * psi[k] + B * span) * d;
-        beta[k] = cc[k] * hs * B * d;
+        beta[k] = cc[group[k]] * hs * B * d;
         uFree[k] = us;
     }
 }
@@ -63,21 +63,21 @@ void gatherScaled(int count, const int* __restrict index, const double* __restri
         out[t] = scale * from[index[t]];
 }
 
-// Per point, its group's S and W at S[k] and W[k] (copied beside the points): the force
+// Per point, its group's S and W at S[group[k]] and W[group[k]]: the force
 // f = alpha - beta S, the wire u = u* - gammaS f, the gap xi^{n+1} = u - W and psi at n+1/2;
 // `dropped` gets psi^2 where psi is reset and, Damped, 2 / h_s times the energy the contact's
 // damping took, damp[k] (xi^{n+1} - xi^{n-1})^2.
 template <bool Damped>
 void finishPoints(int count, const double* __restrict alpha, const double* __restrict beta, const double* __restrict gq,
-                  const double* __restrict S, const double* __restrict W, double gammaS, const double* __restrict xiPrev,
+                  const int* __restrict group, const double* __restrict S, const double* __restrict W, double gammaS, const double* __restrict xiPrev,
                   const double* __restrict xiNow, const double* __restrict damp, double* __restrict uFree, double* __restrict xiNext,
                   double* __restrict psi, double* __restrict dropped)
 {
     for (int k = 0; k < count; ++k)
     {
-        const double f = alpha[k] - beta[k] * S[k];
+        const double f = alpha[k] - beta[k] * S[group[k]];
         const double u = uFree[k] - gammaS * f;
-        const double xiNew = u - W[k];
+        const double xiNew = u - W[group[k]];
         uFree[k] = u;
         xiNext[k] = xiNew;
         const double next = psi[k] + 0.5 * gq[k] * (xiNew - xiPrev[k]);
@@ -170,11 +170,24 @@ void predictClass(int size, int count, const int* __restrict wireNode, const dou
 }
 
 // The indices first + i of the `count` groups whose reach is positive, in order, into list;
-// returns how many.
+// returns how many. On avx512 sixteen at a time, compressed in a register and stored whole (its
+// lanes beyond the count land where later groups' indices go: list holds count entries).
 int listReaching(int count, const double* __restrict reach, int first, int* __restrict list)
 {
-    int n = 0;
-    for (int i = 0; i < count; ++i)
+    int n = 0, i = 0;
+#if SNARESIM_VECTOR_TARGETS && SNARESIM_VECTOR_BYTES == 64
+    __m512i ids = _mm512_add_epi32(_mm512_set1_epi32(first), _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15));
+    for (; i + 16 <= count; i += 16)
+    {
+        const unsigned low = _mm512_cmp_pd_mask(_mm512_loadu_pd(reach + i), _mm512_setzero_pd(), _CMP_GT_OQ);
+        const unsigned high = _mm512_cmp_pd_mask(_mm512_loadu_pd(reach + i + 8), _mm512_setzero_pd(), _CMP_GT_OQ);
+        const __mmask16 taking = (__mmask16) (low | high << 8);
+        _mm512_storeu_si512(list + n, _mm512_maskz_compress_epi32(taking, ids));
+        n += __builtin_popcount(taking);
+        ids = _mm512_add_epi32(ids, _mm512_set1_epi32(16));
+    }
+#endif
+    for (; i < count; ++i)
     {
         list[n] = first + i;
         n += reach[i] > 0.0 ? 1 : 0;
