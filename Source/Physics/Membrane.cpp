@@ -269,22 +269,19 @@ void Membrane::blockSumsNext(int side, double* out) const
         SNARESIM_ON_VECTOR_TARGET(blockSums(wNext.data(), n, side, dRowScratch.data(), out));
 }
 
-void Membrane::blockAccelerationsIn(int side, int ix0, int iy0, int columns, int rows, double* out) const
+void Membrane::blockAccelerationsIn(int side, int ix0, int iy0, int columns, int rows, double scale, float* out, int stride) const
 {
     const int n = g.width();
-    const int count = ((columns + side - 1) / side) * ((rows + side - 1) / side);
     if (single)
     {
         const auto kernel = SNARESIM_ON_VECTOR_TARGET(blockSecondDifferences<float>);
-        kernel(fNext.data(), fNow.data(), fPrev.data(), n, ix0, iy0, columns, rows, side, accScratch.data(), out);
+        kernel(fNext.data(), fNow.data(), fPrev.data(), n, ix0, iy0, columns, rows, side, h * h, scale, accScratch.data(), out, stride);
     }
     else
     {
         const auto kernel = SNARESIM_ON_VECTOR_TARGET(blockSecondDifferences<double>);
-        kernel(wNext.data(), wNow.data(), wPrev.data(), n, ix0, iy0, columns, rows, side, accScratch.data(), out);
+        kernel(wNext.data(), wNow.data(), wPrev.data(), n, ix0, iy0, columns, rows, side, h * h, scale, accScratch.data(), out, stride);
     }
-    for (int b = 0; b < count; ++b)
-        out[b] *= h * h;
 }
 
 void Membrane::prepareBlocks(int side)

@@ -78,8 +78,9 @@ public:
     // cells.
     void blockSumsNext(int side, double* out) const;
     // h^2 sum(w^{n+1} - 2 w^n + w^{n-1}) over the blocks of side x side nodes of the rectangle
-    // of columns x rows nodes from node (ix0, iy0) (inside the grid), into out row by row.
-    void blockAccelerationsIn(int side, int ix0, int iy0, int columns, int rows, double* out) const;
+    // of columns x rows nodes from node (ix0, iy0) (inside the grid), times scale, in float into
+    // every stride-th float of out, block row by block row (a microphone's rows of sources).
+    void blockAccelerationsIn(int side, int ix0, int iy0, int columns, int rows, double scale, float* out, int stride) const;
     // A pressure (Pa, pushing up) uniform over each block of side x side nodes (as blockSumsNext's
     // blocks; perBlock[by * blocks + bx]) for the next computeFree only, at every interior node
     // (eq. 22's pressure term, node by node): the cavity's modes and the near field

@@ -482,19 +482,24 @@ void blockSums(const Real* w, int n, int side, double* acc, double* out)
 }
 // The rectangle's second differences in time summed over blocks, in double: every band of side
 // rows into its row of acc (vectorised along the rows), then the rows' runs, read once every
-// band is summed (as sumBlocks). acc holds ceil(rows / side) rows of `columns`.
+// band is summed (as sumBlocks). acc holds ceil(rows / side) rows of `columns`. Block b's sum s
+// goes to out[b * stride] as the float (s hh) scale.
 template <class Real>
 void blockSecondDifferences(const Real* __restrict next, const Real* __restrict now, const Real* __restrict prev, int n, int ix0, int iy0,
-                            int columns, int rows, int side, double* __restrict acc, double* __restrict out)
+                            int columns, int rows, int side, double hh, double scale, double* __restrict acc, float* __restrict out,
+                            int stride)
 {
     if (side == 1) // a block a node
     {
         for (int iy = 0; iy < rows; ++iy)
         {
             const size_t o = (size_t) (iy0 + iy) * (size_t) n + (size_t) ix0;
-            double* row = out + (size_t) iy * (size_t) columns;
+            float* row = out + (size_t) iy * (size_t) columns * (size_t) stride;
             for (int ix = 0; ix < columns; ++ix)
-                row[ix] = ((double) next[o + ix] - 2.0 * (double) now[o + ix]) + (double) prev[o + ix];
+            {
+                const double s = ((double) next[o + ix] - 2.0 * (double) now[o + ix]) + (double) prev[o + ix];
+                row[(size_t) ix * (size_t) stride] = (float) ((s * hh) * scale);
+            }
         }
         return;
     }
@@ -518,7 +523,7 @@ void blockSecondDifferences(const Real* __restrict next, const Real* __restrict 
             double s = 0.0;
             for (int ix = bx * side; ix < std::min(columns, (bx + 1) * side); ++ix)
                 s += band[ix];
-            out[by * bxs + bx] = s;
+            out[(size_t) (by * bxs + bx) * (size_t) stride] = (float) ((s * hh) * scale);
         }
     }
 }

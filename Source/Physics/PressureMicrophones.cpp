@@ -88,7 +88,7 @@ PressureMicrophones::PressureMicrophones(const MicSpec& spec, const CavitySpec& 
     {
         l.fineBegin = (int) sources;
         sources += nearMost;
-        l.fine.assign(nearMost, 0.0);
+        l.fineCapacity = (int) nearMost;
         l.cell.resize(most + nearMost);
         l.now.resize(most + nearMost);
         l.next.resize(most + nearMost);
@@ -144,7 +144,7 @@ void PressureMicrophones::place(Listener& l, const AirPoint& p) noexcept
     l.nearRows = by1 >= by0 ? std::min(g.width(), (by1 + 1) * f.side) - l.nearY : 0;
     const int fineColumns = (l.nearColumns + f.fine - 1) / f.fine, fineRows = (l.nearRows + f.fine - 1) / f.fine;
     l.nearCells = fineColumns * fineRows;
-    if ((size_t) l.nearCells > l.fine.size()) // cannot happen (the capacity is the largest square)
+    if (l.nearCells > l.fineCapacity) // cannot happen (the capacity is the largest square)
         l.nearCells = 0, l.nearColumns = l.nearRows = 0, bx1 = bx0 - 1;
     int lo = rows, hi = 0;
     int cellTaps = 0;
@@ -319,11 +319,8 @@ void PressureMicrophones::listen(const Membrane& batter, const Membrane& carry, 
         if (l.nearCells > 0)
         {
             const Head& f = heads[(size_t) l.facing];
-            double* fine = l.fine.data();
-            membranes[l.facing]->blockAccelerationsIn(f.fine, l.nearX, l.nearY, l.nearColumns, l.nearRows, fine);
-            float* A = column + (size_t) l.fineBegin * kLanes;
-            for (int i = 0; i < l.nearCells; ++i)
-                A[(size_t) i * kLanes] = (float) (fine[i] * inverseKk);
+            membranes[l.facing]->blockAccelerationsIn(f.fine, l.nearX, l.nearY, l.nearColumns, l.nearRows, inverseKk,
+                                                      column + (size_t) l.fineBegin * kLanes, kLanes);
         }
     if (++filled == span)
         sumBlock();

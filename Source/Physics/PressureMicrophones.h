@@ -128,7 +128,7 @@ private:
         // (nearX, nearY), nearColumns x nearRows nodes, in fine cells.
         int nearX = 0, nearY = 0, nearColumns = 0, nearRows = 0, nearCells = 0;
         int fineBegin = 0;                 // the first fine cell's row of A (sourceRows)
-        AlignedVector<double> fine;        // the fine cells' A, as the head gives them
+        int fineCapacity = 0;              // the most fine cells its rows of A hold
         Tap facingWhole {}, otherWhole {}; // the low-passed whole-head terms
         AlignedVector<float> direct;       // ring: the far taps' direct sound ahead, kLanes partial sums a sample
         AlignedVector<float> directNear;   // ring: the near taps' alike
