@@ -105,7 +105,7 @@ SnareContact::SnareContact(const SnareSpec& spec, SnareWires& wires, Membrane& c
     activePoints.assign(numPoints, 0);
     solveWireNode.assign(numPoints, 0);
     activeGroups.assign(groupNode.size(), 0);
-    activeClasses.reserve(classes.size());
+    activeClasses.resize(classes.size());
     psiQ.assign(numPoints, 0.0);
     trialPsi = psiQ;
     rLast.assign(numPoints, std::numeric_limits<double>::quiet_NaN());
@@ -218,58 +218,35 @@ SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wire
     // The groups holding a point that takes part, and those holding wire ends (their node moves
     // with the ends), are solved; the others keep xi* and their free node, as their solve would
     // leave them. The work is at most that of every point touching.
-    for (const SizeClass& c : classes)
-        SNARESIM_ON_VECTOR_TARGET(predictClass)
-        (c.size, c.groupCount, pointWireNode.data() + c.pointBegin, u, groupW0.data() + c.groupBegin, xiPrev.data() + c.pointBegin,
-         psiQ.data() + c.pointBegin, xiNext.data() + c.pointBegin, groupReach.data() + c.groupBegin);
+    const int numClasses = (int) classes.size();
+    SNARESIM_ON_VECTOR_TARGET(predictClasses)
+    (classes.data(), numClasses, pointWireNode.data(), u, groupW0.data(), xiPrev.data(), psiQ.data(), xiNext.data(), groupReach.data());
     for (int g : endGroups)
         groupReach[(size_t) g] = 1.0;
     int solvedGroups = 0, solvedPoints = 0;
-    activeClasses.clear(); // reserved to classes.size(): no allocation
-    for (const SizeClass& c : classes)
-    {
-        const int groupBegin = solvedGroups;
-        const int count = SNARESIM_ON_VECTOR_TARGET(listReaching)(c.groupCount, groupReach.data() + c.groupBegin, c.groupBegin,
-                                                                  activeGroups.data() + groupBegin);
-        solvedGroups += count;
-        if (count == 0)
-            continue;
-        activeClasses.push_back({ c.size, groupBegin, count, solvedPoints });
-        solvedPoints += c.size * count;
-    }
+    const int numActive = SNARESIM_ON_VECTOR_TARGET(listReachingClasses)(classes.data(), numClasses, groupReach.data(), activeGroups.data(),
+                                                                         activeClasses.data(), solvedGroups, solvedPoints);
     // Most points taking part (a fortissimo strike; or a test's reference, solveEveryPoint):
     // every group is solved in place, without gathering, which is the all-touching case's work.
     const bool whole = solveEveryPoint || 4 * solvedPoints > 3 * n;
-    if (! whole) // the points of the groups taking part, member-major by class
-        for (size_t next = 0; const SizeClass& c : classes)
-        {
-            if (next == activeClasses.size() || activeClasses[next].size != c.size)
-                continue; // none of this class takes part (one class per size, in order)
-            const SizeClass& a = activeClasses[next++];
-            int t = a.pointBegin;
-            for (int j = 0; j < c.size; ++j)
-                for (int g = a.groupBegin; g < a.groupBegin + a.groupCount; ++g)
-                {
-                    activePoints[(size_t) t] = c.pointBegin + j * c.groupCount + (activeGroups[(size_t) g] - c.groupBegin);
-                    solvePointGroup[(size_t) t++] = g;
-                }
-        }
     const int m = whole ? n : solvedPoints;
     lastSolvedPoints = m;
     const int* group = activeGroups.data();
     const int* point = activePoints.data();
-    const std::vector<SizeClass>& layout = whole ? classes : activeClasses;
+    const SizeClass* layout = whole ? classes.data() : activeClasses.data();
+    const int layoutClasses = whole ? numClasses : numActive;
     const int* wireNode = pointWireNode.data();
     const int* ofPoint = whole ? pointGroup.data() : solvePointGroup.data(); // each point's group in the solve's group arrays
     const double *before = xiPrev.data(), *now = xiNow.data(), *W0 = groupW0.data(), *cc = groupCc.data();
     double *psiSolved = psiQ.data(), *xiSolved = xiNext.data(), *W = groupW.data();
     if (! whole)
     {
-        // the groups taking part gathered, member-major by class as above
-        SNARESIM_ON_VECTOR_TARGET(gatherPoints<int>)(m, point, pointWireNode.data(), solveWireNode.data());
-        SNARESIM_ON_VECTOR_TARGET(gatherPoints<double>)(m, point, xiPrev.data(), solveXiPrev.data());
-        SNARESIM_ON_VECTOR_TARGET(gatherPoints<double>)(m, point, xiNow.data(), solveXiNow.data());
-        SNARESIM_ON_VECTOR_TARGET(gatherPoints<double>)(m, point, psiQ.data(), solvePsi.data());
+        // the groups taking part and their points, member-major by class, gathered
+        SNARESIM_ON_VECTOR_TARGET(listPoints)
+        (classes.data(), activeClasses.data(), numActive, activeGroups.data(), activePoints.data(), solvePointGroup.data());
+        SNARESIM_ON_VECTOR_TARGET(gatherSolvedPoints)
+        (m, point, pointWireNode.data(), xiPrev.data(), xiNow.data(), psiQ.data(), solveWireNode.data(), solveXiPrev.data(),
+         solveXiNow.data(), solvePsi.data());
         SNARESIM_ON_VECTOR_TARGET(gatherPoints<double>)(solvedGroups, group, groupW0.data(), solveGroupW0.data());
         SNARESIM_ON_VECTOR_TARGET(gatherPoints<double>)(solvedGroups, group, groupCc.data(), solveGroupCc.data());
         wireNode = solveWireNode.data();
@@ -287,10 +264,7 @@ SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wire
     // Only the solved groups' nodes are written (the others keep their free value W0), keyed by
     // their group's index, so that the head's running sum of w^{n+1} (Membrane::setNextAt) is
     // the same to the last bit whichever groups were solved.
-    for (const SizeClass& c : layout)
-        SNARESIM_ON_VECTOR_TARGET(solveClass)
-        (c.size, c.groupCount, alphaQ.data() + c.pointBegin, betaQ.data() + c.pointBegin, W0 + c.groupBegin, cc + c.groupBegin, hs,
-         solveGroupS.data() + c.groupBegin, W + c.groupBegin);
+    SNARESIM_ON_VECTOR_TARGET(solveClasses)(layout, layoutClasses, alphaQ.data(), betaQ.data(), W0, cc, hs, solveGroupS.data(), W);
     carry.setNextAt(groupNode.data(), W, whole ? nullptr : group, whole ? numGroups : solvedGroups);
     if (! whole)
         SNARESIM_ON_VECTOR_TARGET(scatterPoints)(solvedGroups, group, solveGroupW.data(), groupW.data()); // the ends' groups below
@@ -305,10 +279,7 @@ SnareSolveResult SnareContact::stepQuadratised(Membrane& carry, SnareWires& wire
            xiSolved, psiSolved, solveDropped.data());
     SNARESIM_ON_VECTOR_TARGET(scatterPoints)(m, wireNode, uFree.data(), u);
     if (! whole)
-    {
-        SNARESIM_ON_VECTOR_TARGET(scatterPoints)(m, point, solveXiNext.data(), xiNext.data());
-        SNARESIM_ON_VECTOR_TARGET(scatterPoints)(m, point, solvePsi.data(), psiQ.data());
-    }
+        SNARESIM_ON_VECTOR_TARGET(scatterSolvedPoints)(m, point, solveXiNext.data(), solvePsi.data(), xiNext.data(), psiQ.data());
 
     // The points left out are apart (xi* <= 0) and hold no psi: the deepest gap, the points
     // touching, psi's resets and the damping's work are among those solved.

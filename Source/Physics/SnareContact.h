@@ -105,6 +105,13 @@ public:
     // the points the last quadratised step solved (at most numPoints())
     int solvedPoints() const { return lastSolvedPoints; }
 
+    // A class of node groups of `size` points each (the layout above): groupCount groups from
+    // groupBegin, their points from pointBegin.
+    struct SizeClass
+    {
+        int size, groupBegin, groupCount, pointBegin;
+    };
+
     void advance();
     // Lay the wires on the carry head as it is at n and n-1 (snares engaged): every node
     // moves with the head node it maps to, gaps are zero.
@@ -157,10 +164,6 @@ private:
     // groups (one per head node), class by class: the node, its points and its ends (CSR)
     AlignedVector<int> groupNode, groupMemberBegin, groupMembers, groupEndBegin, groupEnds;
     AlignedVector<int> endGroups; // groups holding wire ends
-    struct SizeClass
-    {
-        int size, groupBegin, groupCount, pointBegin;
-    };
     std::vector<SizeClass> classes;
     AlignedVector<double> xiNext, xiNow, xiPrev;
     AlignedVector<double> rLast;        // last step's root per point (NaN when it was not solved): Newton's start
@@ -181,7 +184,7 @@ private:
     // groups and points that do (the class layout over them: activeClasses), their values gathered.
     AlignedVector<double> groupReach;
     AlignedVector<int> activeGroups, activePoints, solveWireNode;
-    std::vector<SizeClass> activeClasses;
+    std::vector<SizeClass> activeClasses; // as many as classes: those taking part first
     AlignedVector<double> solveXiPrev, solveXiNow, solveXiNext, solvePsi, solveDropped;
     AlignedVector<double> solveGroupW0, solveGroupCc, solveGroupS, solveGroupW;
     bool solveEveryPoint = false;

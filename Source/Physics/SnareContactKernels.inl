@@ -116,6 +116,18 @@ void solveClass(int size, int count, const double* __restrict alpha, const doubl
     }
 }
 
+// solveClass over every class of a layout (its points' and groups' arrays whole).
+void solveClasses(const SnareContact::SizeClass* classes, int numClasses, const double* __restrict alpha, const double* __restrict beta,
+                  const double* __restrict W0, const double* __restrict cc, double hs, double* __restrict S, double* __restrict W)
+{
+    for (int c = 0; c < numClasses; ++c)
+    {
+        const SnareContact::SizeClass& k = classes[c];
+        solveClass(k.size, k.groupCount, alpha + k.pointBegin, beta + k.pointBegin, W0 + k.groupBegin, cc + k.groupBegin, hs,
+                   S + k.groupBegin, W + k.groupBegin);
+    }
+}
+
 // Over all points: the sum of dropped, the largest gap (0 when all apart) and the number
 // touching, four points at a time (GCC's vector extensions, so that it vectorises).
 using Double4 = double __attribute__((vector_size(32)));
@@ -169,6 +181,19 @@ void predictClass(int size, int count, const int* __restrict wireNode, const dou
         }
 }
 
+// predictClass over every class of a layout (its points' and groups' arrays whole).
+void predictClasses(const SnareContact::SizeClass* classes, int numClasses, const int* __restrict wireNode, const double* __restrict u,
+                    const double* __restrict W0, const double* __restrict xiPrev, const double* __restrict psi, double* __restrict xiNext,
+                    double* __restrict reach)
+{
+    for (int c = 0; c < numClasses; ++c)
+    {
+        const SnareContact::SizeClass& k = classes[c];
+        predictClass(k.size, k.groupCount, wireNode + k.pointBegin, u, W0 + k.groupBegin, xiPrev + k.pointBegin, psi + k.pointBegin,
+                     xiNext + k.pointBegin, reach + k.groupBegin);
+    }
+}
+
 // The indices first + i of the `count` groups whose reach is positive, in order, into list;
 // returns how many. On avx512 sixteen at a time, compressed in a register and stored whole (its
 // lanes beyond the count land where later groups' indices go: list holds count entries).
@@ -193,6 +218,77 @@ int listReaching(int count, const double* __restrict reach, int first, int* __re
         n += reach[i] > 0.0 ? 1 : 0;
     }
     return n;
+}
+
+// Each class's groups whose reach is positive (listReaching), class by class, into list, and
+// the classes they form into active (their sizes; their groups from 0 in list, their points
+// from 0 member-major); returns how many classes, their groups in groups and points in points.
+int listReachingClasses(const SnareContact::SizeClass* classes, int numClasses, const double* __restrict reach, int* __restrict list,
+                        SnareContact::SizeClass* __restrict active, int& groups, int& points)
+{
+    int count = 0;
+    groups = points = 0;
+    for (int c = 0; c < numClasses; ++c)
+    {
+        const SnareContact::SizeClass& k = classes[c];
+        const int n = listReaching(k.groupCount, reach + k.groupBegin, k.groupBegin, list + groups);
+        if (n == 0)
+            continue;
+        active[count++] = { k.size, groups, n, points };
+        groups += n;
+        points += k.size * n;
+    }
+    return count;
+}
+// The points of active's classes (listReachingClasses: groups[g] the g-th group taking part),
+// member-major by class, into points (their places in classes' layout), with each one's group
+// (g) into pointGroup. One class per size, in the same order in both.
+void listPoints(const SnareContact::SizeClass* classes, const SnareContact::SizeClass* active, int numActive, const int* __restrict groups,
+                int* __restrict points, int* __restrict pointGroup)
+{
+    for (int a = 0, c = 0; a < numActive; ++a)
+    {
+        while (classes[c].size != active[a].size)
+            ++c;
+        const SnareContact::SizeClass &k = classes[c], &s = active[a];
+        const int* in = groups + s.groupBegin;
+        for (int j = 0, t = s.pointBegin; j < k.size; ++j, t += s.groupCount)
+        {
+            const int offset = k.pointBegin + j * k.groupCount - k.groupBegin;
+            for (int i = 0; i < s.groupCount; ++i)
+            {
+                points[t + i] = offset + in[i];
+                pointGroup[t + i] = s.groupBegin + i;
+            }
+        }
+    }
+}
+// The solve's points gathered (index: their places among all points): their wire nodes, xi^{n-1},
+// xi^n and psi.
+void gatherSolvedPoints(int count, const int* __restrict index, const int* __restrict wireNode, const double* __restrict xiPrev,
+                        const double* __restrict xiNow, const double* __restrict psi, int* __restrict outWireNode,
+                        double* __restrict outXiPrev, double* __restrict outXiNow, double* __restrict outPsi)
+{
+#pragma omp simd
+    for (int t = 0; t < count; ++t)
+    {
+        const int k = index[t];
+        outWireNode[t] = wireNode[k];
+        outXiPrev[t] = xiPrev[k];
+        outXiNow[t] = xiNow[k];
+        outPsi[t] = psi[k];
+    }
+}
+// The solve's xi^{n+1} and psi put back in their places (index, distinct).
+void scatterSolvedPoints(int count, const int* __restrict index, const double* __restrict xiNext, const double* __restrict psi,
+                         double* __restrict toXiNext, double* __restrict toPsi)
+{
+#pragma omp simd
+    for (int t = 0; t < count; ++t)
+    {
+        toXiNext[index[t]] = xiNext[t];
+        toPsi[index[t]] = psi[t];
+    }
 }
 
 // out[t] = from[index[t]] (a gather), for doubles and ints.
