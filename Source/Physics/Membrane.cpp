@@ -154,9 +154,18 @@ void Membrane::setNextAt(const int* nodes, const double* values, const int* inde
     }
     else
     {
-        const auto scatter = momentsKept ? SNARESIM_ON_VECTOR_TARGET(scatterNodesKeyed<true, double>)
-                                         : SNARESIM_ON_VECTOR_TARGET(scatterNodesKeyed<false, double>);
-        sumNext += scatter(wNext.data(), dX.data(), dY.data(), nodes, values, index, count, xSumNext, ySumNext);
+        const bool kept = sumSide == 0;
+        const auto scatter = kept && momentsKept ? SNARESIM_ON_VECTOR_TARGET(scatterNodesKeyed<true, double>)
+                                                 : SNARESIM_ON_VECTOR_TARGET(scatterNodesKeyed<false, double>);
+        double dx = 0.0, dy = 0.0;
+        const double change = scatter(wNext.data(), dX.data(), dY.data(), nodes, values, index, count, dx, dy);
+        if (kept)
+        {
+            sumNext += change;
+            xSumNext += dx;
+            ySumNext += dy;
+        }
+        sumsStale = ! kept;
     }
 }
 
@@ -168,10 +177,10 @@ void Membrane::nextAt(const int* nodes, double* out, int count) const
         SNARESIM_ON_VECTOR_TARGET(gatherNodes(wNext.data(), nodes, out, count));
 }
 
-// Double: row by row over the disc's runs of interior nodes (nodes outside stay zero, the
-// fixed rim); single: the whole grid at once (updateGridFloat). Both sum w^{n+1} for the
-// cavity on the way (and its first moments, when kept) and are built for each vector target
-// (VectorTarget.h).
+// Row by row over the disc's runs of interior nodes (nodes outside stay zero, the fixed rim),
+// the sums taken later (takeSumsWithBlocks); or, single, the whole grid at once (updateGridFloat),
+// double, the rows: both summing w^{n+1} for the cavity on the way (and its first moments, when
+// kept). Built for each vector target (VectorTarget.h).
 void Membrane::computeFree(double pressure) { computeFree(pressure, 0.0, 0.0); }
 
 void Membrane::computeFree(double p0, double px, double py)
@@ -208,9 +217,16 @@ void Membrane::computeFree(double p0, double px, double py)
                          (float) (gain * py), xSumNext, ySumNext);
         return;
     }
-    const auto update =
-        tilt ? (field ? SNARESIM_ON_VECTOR_TARGET(updateRows<true, true>) : SNARESIM_ON_VECTOR_TARGET(updateRows<true, false>))
-             : (field ? SNARESIM_ON_VECTOR_TARGET(updateRows<false, true>) : SNARESIM_ON_VECTOR_TARGET(updateRows<false, false>));
+    sumsStale = sumSide > 0;
+    const auto update = sumsStale // the sums taken later (takeSumsWithBlocks)
+                            ? (tilt ? (field ? SNARESIM_ON_VECTOR_TARGET(updateRows<false, true, true>)
+                                             : SNARESIM_ON_VECTOR_TARGET(updateRows<false, true, false>))
+                                    : (field ? SNARESIM_ON_VECTOR_TARGET(updateRows<false, false, true>)
+                                             : SNARESIM_ON_VECTOR_TARGET(updateRows<false, false, false>)))
+                            : (tilt ? (field ? SNARESIM_ON_VECTOR_TARGET(updateRows<true, true, true>)
+                                             : SNARESIM_ON_VECTOR_TARGET(updateRows<true, true, false>))
+                                    : (field ? SNARESIM_ON_VECTOR_TARGET(updateRows<true, false, true>)
+                                             : SNARESIM_ON_VECTOR_TARGET(updateRows<true, false, false>)));
     double sx = 0.0, sy = 0.0;
     const double sum = update(wNext.data(), wNow.data(), wPrev.data(), field ? dField.data() : nullptr, dX.data(), rowY.data(),
                               rowBegin.data(), rowEnd.data(), n, a0, a1, b0, b1, push, gain * px, gain * py, sx, sy);
@@ -235,23 +251,29 @@ std::array<double, 2> Membrane::tiltNext() const
 
 void Membrane::takeSumsWithBlocks(int side)
 {
-    if (! single || side < 1)
+    if (side < 1)
         return;
     const int n = g.width(), blocks = (n + side - 1) / side;
     sumSide = side;
     sideSums.assign((size_t) blocks * (size_t) blocks, 0.0);
-    axisSingle.resize((size_t) n);
+    axisTaken.resize((size_t) n);
     for (int i = 0; i < n; ++i)
-        axisSingle[(size_t) i] = (double) (float) g.x(i); // fX by column, fY by row, inside the disc
+        axisTaken[(size_t) i] = single ? (double) (float) g.x(i) : g.x(i); // x by column and y by row as fX, fY (dX, dY) hold them
     sumsStale = true;
 }
 
 void Membrane::takeSums() const
 {
-    const auto pass =
-        momentsKept ? SNARESIM_ON_VECTOR_TARGET(blockSumsAndMoments<true>) : SNARESIM_ON_VECTOR_TARGET(blockSumsAndMoments<false>);
-    pass(fNext.data(), g.width(), sumSide, axisSingle.data(), axisSingle.data(), dRowScratch.data(), sideSums.data(), sumNext, xSumNext,
-         ySumNext);
+    const auto pass = momentsKept ? SNARESIM_ON_VECTOR_TARGET(blockSumsAndMoments<true, float>)
+                                  : SNARESIM_ON_VECTOR_TARGET(blockSumsAndMoments<false, float>);
+    const auto passDouble = momentsKept ? SNARESIM_ON_VECTOR_TARGET(blockSumsAndMoments<true, double>)
+                                        : SNARESIM_ON_VECTOR_TARGET(blockSumsAndMoments<false, double>);
+    if (single)
+        pass(fNext.data(), g.width(), sumSide, axisTaken.data(), axisTaken.data(), dRowScratch.data(), sideSums.data(), sumNext, xSumNext,
+             ySumNext);
+    else
+        passDouble(wNext.data(), g.width(), sumSide, axisTaken.data(), axisTaken.data(), dRowScratch.data(), sideSums.data(), sumNext,
+                   xSumNext, ySumNext);
     sumsStale = false;
 }
 

@@ -52,11 +52,10 @@ public:
     // Keep the first moments as the sum is kept: summed in computeFree, moved by every force
     // update; for a coupling that reads them every step (OutsideAirCoupling).
     void keepMoments() { momentsKept = true; }
-    // The float state: its sum and first moments at n+1 are not kept by computeFree and the force
-    // updates but taken in one pass once the step's forces are in (the first read of the
-    // volume, the moments or the block sums of this side after a change), a double sum of the
-    // state as it is, with the blocks' sums of this side on the way (takenBlockSums). The double
-    // state keeps its running sums: this does nothing there.
+    // The sum and first moments at n+1 not kept by computeFree and the force updates but taken in
+    // one pass once the step's forces are in (the first read of the volume, the moments or the
+    // block sums of this side after a change), a double sum of the state as it is, with the
+    // blocks' sums of this side on the way (takenBlockSums).
     void takeSumsWithBlocks(int side);
     // Take those sums now, once every force of the step is in (while the state is in cache).
     void takeSumsNow() const
@@ -146,6 +145,7 @@ public:
     {
         wNext = w;
         sumNext = sum;
+        sumsStale = sumSide > 0; // taken sums: taken again from w
     }
     // h^2 sum(w) at n+1: the volume swept by the head (summed in computeFree, kept by the
     // force updates; or taken once the forces are in: takeSumsWithBlocks).
@@ -193,11 +193,11 @@ private:
     mutable double xSumNext = 0.0, ySumNext = 0.0; // sum(x w^{n+1}), sum(y w^{n+1}), when kept
     // takeSumsWithBlocks: the side of the blocks summed with them (0: the sums are kept), whether
     // w^{n+1} changed since they were taken, the blocks' sums, and the grid's coordinates as the
-    // float state's xs, ys hold them (x of a column, y of a row: the same values)
+    // state's xs, ys hold them (x of a column, y of a row: the same values; in float for the float state)
     int sumSide = 0;
     mutable bool sumsStale = false;
     mutable std::vector<double> sideSums;
-    std::vector<double> axisSingle;
+    std::vector<double> axisTaken;
     void takeSums() const;
     // w^{n+1} at a node moved by dw: the sums kept follow
     void moved(int node, double dw)

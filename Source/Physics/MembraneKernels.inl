@@ -3,13 +3,14 @@
 
 // Eq. (22) (the carry head's (23) alike) over the disc's rows 1 .. n-2, row iy holding the nodes
 // rowBegin[iy] .. rowEnd[iy] - 1, all inside the disc: out = c0 w + c1 (4 neighbours of w) + d0 wp
-// + d1 (4 neighbours of wp) + push (+ px xs[m] + py y with Tilt, + field[m] with Field). Returns
-// the sum of out, and with Tilt sets sx, sy to sum(xs out), sum(y out) (ys: y by row). A vector
-// of nodes at a time along each row; a row's last vector ends at the row's end, over the one
-// before (out is written twice with the same values there, and its lanes already summed count
-// nothing), so only rows shorter than a vector go node by node. The sums stay in vector lanes
-// over every row and are added across the lanes once, at the end (no row's own sum is formed).
-template <bool Tilt, bool Field>
+// + d1 (4 neighbours of wp) + push (+ px xs[m] + py y with Tilt, + field[m] with Field). With
+// Sums, returns the sum of out, and with Tilt sets sx, sy to sum(xs out), sum(y out) (ys: y by
+// row); without, returns 0 (the sums taken later). A vector of nodes at a time along each row; a
+// row's last vector ends at the row's end, over the one before (out is written twice with the
+// same values there, and its lanes already summed count nothing), so only rows shorter than a
+// vector go node by node. The sums stay in vector lanes over every row and are added across the
+// lanes once, at the end (no row's own sum is formed).
+template <bool Sums, bool Tilt, bool Field>
 double updateRows(double* __restrict out, const double* __restrict w, const double* __restrict wp, const double* __restrict field,
                   const double* __restrict xs, const double* __restrict ys, const int* __restrict rowBegin, const int* __restrict rowEnd,
                   int n, double c0, double c1, double d0, double d1, double push, double px, double py, double& sx, double& sy)
@@ -61,11 +62,14 @@ double updateRows(double* __restrict out, const double* __restrict w, const doub
         for (; m + lanes <= end; m += lanes)
         {
             const V next = at(m, p, x);
-            vs += next;
-            if constexpr (Tilt)
+            if constexpr (Sums)
             {
-                vx += x * next;
-                vy += y * next;
+                vs += next;
+                if constexpr (Tilt)
+                {
+                    vx += x * next;
+                    vy += y * next;
+                }
             }
         }
         if (m == end)
@@ -73,13 +77,17 @@ double updateRows(double* __restrict out, const double* __restrict w, const doub
         if (end - begin >= lanes) // the last vector, over the one before
         {
             const int last = end - lanes;
-            const V keep = __builtin_convertvector(-(lane >= (double) (m - last)), V); // 1 for the lanes not summed yet
-            const V next = at(last, p, x) * keep;
-            vs += next;
-            if constexpr (Tilt)
+            [[maybe_unused]] const V written = at(last, p, x);
+            if constexpr (Sums)
             {
-                vx += x * next;
-                vy += y * next;
+                const V keep = __builtin_convertvector(-(lane >= (double) (m - last)), V); // 1 for the lanes not summed yet
+                const V next = written * keep;
+                vs += next;
+                if constexpr (Tilt)
+                {
+                    vx += x * next;
+                    vy += y * next;
+                }
             }
             continue;
         }
@@ -95,11 +103,14 @@ double updateRows(double* __restrict out, const double* __restrict w, const doub
             if constexpr (Field)
                 next += field[m];
             out[m] = next;
-            ts += next;
-            if constexpr (Tilt)
+            if constexpr (Sums)
             {
-                tx += xs[m] * next;
-                ty += y * next;
+                ts += next;
+                if constexpr (Tilt)
+                {
+                    tx += xs[m] * next;
+                    ty += y * next;
+                }
             }
         }
     }
@@ -316,8 +327,9 @@ void sumBlocks(const Real* __restrict w, int n, double* __restrict acc, double* 
 using DoubleVector = double __attribute__((vector_size(SNARESIM_VECTOR_BYTES)));
 using DoubleVectorFloats = float __attribute__((vector_size(SNARESIM_VECTOR_BYTES / 2))); // a DoubleVector's lanes in float
 // A DoubleVector's lanes of floats at p, widened: one conversion from memory on the wide
-// targets (GCC splits __builtin_convertvector there into halves and reassembles them).
-inline DoubleVector widenFloats(const float* p)
+// targets (GCC splits __builtin_convertvector there into halves and reassembles them); of
+// doubles, loaded.
+inline DoubleVector lanesInDouble(const float* p)
 {
 #if SNARESIM_VECTOR_TARGETS && SNARESIM_VECTOR_BYTES == 64
     return (DoubleVector) _mm512_maskz_cvtps_pd((__mmask8) -1, _mm256_loadu_ps(p)); // _mm512_cvtps_pd: a false GCC 12 warning
@@ -329,8 +341,14 @@ inline DoubleVector widenFloats(const float* p)
     return __builtin_convertvector(r, DoubleVector);
 #endif
 }
-template <int Rows, bool Moments>
-void sumBand(const float* __restrict row0, int n, int rows, const double* __restrict xs, const double* __restrict y,
+inline DoubleVector lanesInDouble(const double* p)
+{
+    DoubleVector r;
+    std::memcpy(&r, p, sizeof r);
+    return r;
+}
+template <int Rows, bool Moments, class Real>
+void sumBand(const Real* __restrict row0, int n, int rows, const double* __restrict xs, const double* __restrict y,
              double* __restrict band, DoubleVector& total, DoubleVector& sx, DoubleVector& sy)
 {
     constexpr int lanes = SNARESIM_VECTOR_BYTES / (int) sizeof(double);
@@ -339,10 +357,10 @@ void sumBand(const float* __restrict row0, int n, int rows, const double* __rest
     for (int start = 0; start < n; start += lanes)
     {
         const int ix = std::min(start, n - lanes);
-        V v = widenFloats(row0 + (size_t) ix), b = v, t = y[0] * v;
+        V v = lanesInDouble(row0 + (size_t) ix), b = v, t = y[0] * v;
         for (int k = 1; k < count; ++k)
         {
-            v = widenFloats(row0 + (size_t) k * (size_t) n + (size_t) ix);
+            v = lanesInDouble(row0 + (size_t) k * (size_t) n + (size_t) ix);
             b += v;
             t += y[k] * v;
         }
@@ -366,8 +384,8 @@ void sumBand(const float* __restrict row0, int n, int rows, const double* __rest
         }
     }
 }
-template <int Side, bool Moments>
-void sumBlocksAndMoments(const float* __restrict w, int n, int side, const double* __restrict xs, const double* __restrict ys,
+template <int Side, bool Moments, class Real>
+void sumBlocksAndMoments(const Real* __restrict w, int n, int side, const double* __restrict xs, const double* __restrict ys,
                          double* __restrict acc, double* __restrict out, double& sum, double& sx, double& sy)
 {
     constexpr int lanes = SNARESIM_VECTOR_BYTES / (int) sizeof(double);
@@ -376,7 +394,7 @@ void sumBlocksAndMoments(const float* __restrict w, int n, int side, const doubl
     for (int by = 0; by < blocks; ++by)
     {
         const int first = by * s, rows = std::min(n, first + s) - first;
-        const float* row0 = w + (size_t) first * (size_t) n;
+        const Real* row0 = w + (size_t) first * (size_t) n;
         double* band = acc + (size_t) by * (size_t) length;
         if (n < lanes) // not a head's grid
             for (int ix = 0; ix < n; ++ix)
@@ -423,8 +441,8 @@ void sumBlocksAndMoments(const float* __restrict w, int n, int side, const doubl
     sx = Moments ? ax : 0.0;
     sy = Moments ? ay : 0.0;
 }
-template <bool Moments>
-void blockSumsAndMoments(const float* w, int n, int side, const double* xs, const double* ys, double* acc, double* out, double& sum,
+template <bool Moments, class Real>
+void blockSumsAndMoments(const Real* w, int n, int side, const double* xs, const double* ys, double* acc, double* out, double& sum,
                          double& sx, double& sy)
 {
     switch (side)

@@ -246,68 +246,70 @@ TEST_CASE("the heads' block accelerations equal the plain second differences ove
     }
 }
 
-TEST_CASE("the float head's taken sums equal the plain sums of its state after every change, any side", "[membrane][mics]")
+TEST_CASE("the heads' taken sums equal the plain sums of their state after every change, any side", "[membrane][mics]")
 {
     // takeSumsWithBlocks: the volume, the first moments and the blocks' sums taken from the
     // state once the forces are in, against sums in long double over the state as it is, and
     // against the same head keeping running sums.
-    for (int side = 1; side <= 13; ++side) // 1-4 have their own loops, the others share one
-    {
-        INFO("side " << side);
-        Membrane taken = losslessHeadIn(HeadPrecision::single_precision);
-        Membrane kept = losslessHeadIn(HeadPrecision::single_precision);
-        taken.takeSumsWithBlocks(side);
-        const CircularGrid& g = taken.grid();
-        const int n = g.width();
-        const double h = g.spacing();
-        for (Membrane* head : { &taken, &kept })
+    for (const HeadPrecision precision : { HeadPrecision::single_precision, HeadPrecision::double_precision })
+        for (int side = 1; side <= 13; ++side) // 1-4 have their own loops, the others share one
         {
-            head->keepMoments();
-            for (int level = 0; level < 2; ++level)
+            const bool single = precision == HeadPrecision::single_precision;
+            INFO("side " << side << (single ? ", single" : ", double"));
+            Membrane taken = losslessHeadIn(precision);
+            Membrane kept = losslessHeadIn(precision);
+            taken.takeSumsWithBlocks(side);
+            const CircularGrid& g = taken.grid();
+            const int n = g.width();
+            const double h = g.spacing();
+            for (Membrane* head : { &taken, &kept })
             {
-                if (level > 0)
-                    head->advance();
-                setStructured(*head, level);
-            }
-            head->computeFree(30.0, -400.0, 250.0); // a tilted pressure: the free update's moments
-        }
-        const auto check = [&](const char* when) {
-            INFO(when);
-            long double sum = 0.0L, sx = 0.0L, sy = 0.0L;
-            const int blocks = (n + side - 1) / side;
-            std::vector<double> got((size_t) (blocks * blocks)), expected((size_t) (blocks * blocks), 0.0);
-            for (int iy = 0; iy < n; ++iy)
-                for (int ix = 0; ix < n; ++ix)
+                head->keepMoments();
+                for (int level = 0; level < 2; ++level)
                 {
-                    const double w = taken.nextAt(g.index(ix, iy));
-                    sum += w;
-                    sx += (long double) (float) g.x(ix) * w; // x and y as the float state holds them
-                    sy += (long double) (float) g.x(iy) * w;
-                    expected[(size_t) ((iy / side) * blocks + ix / side)] += w;
+                    if (level > 0)
+                        head->advance();
+                    setStructured(*head, level);
                 }
-            const double scale = (double) (std::abs(sum) + std::abs(sx) / 0.1778 + std::abs(sy) / 0.1778);
-            CHECK(taken.sweptVolumeNext() == Approx((double) (h * h * sum)).margin(1e-13 * h * h * scale));
-            CHECK(taken.tiltNext()[0] == Approx((double) (h * h * sx)).margin(1e-13 * h * h * 0.1778 * scale));
-            CHECK(taken.tiltNext()[1] == Approx((double) (h * h * sy)).margin(1e-13 * h * h * 0.1778 * scale));
-            CHECK(kept.sweptVolumeNext() == Approx(taken.sweptVolumeNext()).margin(1e-12 * h * h * scale));
-            CHECK(kept.tiltNext()[0] == Approx(taken.tiltNext()[0]).margin(1e-12 * h * h * 0.1778 * scale));
-            taken.blockSumsNext(side, got.data());
-            for (size_t b = 0; b < got.size(); ++b)
-                CHECK(got[b] == Approx(expected[b]).margin(1e-13));
-        };
-        check("after the free update");
-        // the contacts' changes: nodes set one by one and together, a spread force
-        const int a = g.index(n / 2, n / 3), b = g.index(n / 3, n / 2), c = g.index(2 * n / 3, n / 2);
-        for (Membrane* head : { &taken, &kept })
-            head->setNextAt(a, 3e-4);
-        check("after a node was set");
-        const int nodes[] = { b, c };
-        const double values[] = { -2e-4, 5e-4 };
-        for (Membrane* head : { &taken, &kept })
-            head->setNextAt(nodes, values, nullptr, 2);
-        check("after two nodes were set together");
-        for (Membrane* head : { &taken, &kept })
-            head->clear();
-        check("after a clear");
-    }
+                head->computeFree(30.0, -400.0, 250.0); // a tilted pressure: the free update's moments
+            }
+            const auto check = [&](const char* when) {
+                INFO(when);
+                long double sum = 0.0L, sx = 0.0L, sy = 0.0L;
+                const int blocks = (n + side - 1) / side;
+                std::vector<double> got((size_t) (blocks * blocks)), expected((size_t) (blocks * blocks), 0.0);
+                for (int iy = 0; iy < n; ++iy)
+                    for (int ix = 0; ix < n; ++ix)
+                    {
+                        const double w = taken.nextAt(g.index(ix, iy));
+                        sum += w;
+                        sx += (long double) (single ? (double) (float) g.x(ix) : g.x(ix)) * w; // x and y as the state holds them
+                        sy += (long double) (single ? (double) (float) g.x(iy) : g.x(iy)) * w;
+                        expected[(size_t) ((iy / side) * blocks + ix / side)] += w;
+                    }
+                const double scale = (double) (std::abs(sum) + std::abs(sx) / 0.1778 + std::abs(sy) / 0.1778);
+                CHECK(taken.sweptVolumeNext() == Approx((double) (h * h * sum)).margin(1e-13 * h * h * scale));
+                CHECK(taken.tiltNext()[0] == Approx((double) (h * h * sx)).margin(1e-13 * h * h * 0.1778 * scale));
+                CHECK(taken.tiltNext()[1] == Approx((double) (h * h * sy)).margin(1e-13 * h * h * 0.1778 * scale));
+                CHECK(kept.sweptVolumeNext() == Approx(taken.sweptVolumeNext()).margin(1e-12 * h * h * scale));
+                CHECK(kept.tiltNext()[0] == Approx(taken.tiltNext()[0]).margin(1e-12 * h * h * 0.1778 * scale));
+                taken.blockSumsNext(side, got.data());
+                for (size_t b = 0; b < got.size(); ++b)
+                    CHECK(got[b] == Approx(expected[b]).margin(1e-13));
+            };
+            check("after the free update");
+            // the contacts' changes: nodes set one by one and together, a spread force
+            const int a = g.index(n / 2, n / 3), b = g.index(n / 3, n / 2), c = g.index(2 * n / 3, n / 2);
+            for (Membrane* head : { &taken, &kept })
+                head->setNextAt(a, 3e-4);
+            check("after a node was set");
+            const int nodes[] = { b, c };
+            const double values[] = { -2e-4, 5e-4 };
+            for (Membrane* head : { &taken, &kept })
+                head->setNextAt(nodes, values, nullptr, 2);
+            check("after two nodes were set together");
+            for (Membrane* head : { &taken, &kept })
+                head->clear();
+            check("after a clear");
+        }
 }
