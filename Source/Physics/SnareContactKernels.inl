@@ -163,9 +163,42 @@ double summarise(int n, const double* __restrict xi, const double* __restrict dr
 // of the solve); per group the largest of its points' xi^{n-1}, xi* and |psi| into reach. A
 // group whose reach is not positive has no point touching at n-1 or at xi* and none holding
 // psi: each of its points has g = 0, no force and keeps psi = 0, so its solve leaves it as it is.
+// A vector of groups at a time, its reach held over the members; the last vector ends at the
+// class's end, over the one before (its groups' values written twice, the same).
 void predictClass(int size, int count, const int* __restrict wireNode, const double* __restrict u, const double* __restrict W0,
                   const double* __restrict xiPrev, const double* __restrict psi, double* __restrict xiNext, double* __restrict reach)
 {
+    constexpr int lanes = SNARESIM_VECTOR_BYTES / (int) sizeof(double);
+    using V = double __attribute__((vector_size(SNARESIM_VECTOR_BYTES)));
+    const auto groupsFrom = [&](int i) {
+        V w0, top {};
+        std::memcpy(&w0, W0 + i, sizeof w0);
+        for (int j = 0; j < size; ++j)
+        {
+            const int k = j * count + i;
+            V us, prev, q;
+            for (int l = 0; l < lanes; ++l)
+                us[l] = u[wireNode[k + l]];
+            const V b = us - w0;
+            std::memcpy(xiNext + k, &b, sizeof b);
+            std::memcpy(&prev, xiPrev + k, sizeof prev);
+            std::memcpy(&q, psi + k, sizeof q);
+            const V x = prev > b ? prev : b;
+            const V p = q < 0.0 ? -q : q;
+            const V r = x > p ? x : p;
+            top = top > r ? top : r;
+        }
+        std::memcpy(reach + i, &top, sizeof top);
+    };
+    if (count >= lanes)
+    {
+        int i = 0;
+        for (; i + lanes <= count; i += lanes)
+            groupsFrom(i);
+        if (i < count)
+            groupsFrom(count - lanes);
+        return;
+    }
     for (int i = 0; i < count; ++i)
         reach[i] = 0.0;
     for (int j = 0; j < size; ++j)
