@@ -132,41 +132,33 @@ namespace
 {
 #define SNARESIM_KERNELS "MembraneKernels.inl"
 #include "PerVectorTarget.inl"
+
+// scatterNodesKeyed on the state in its precision, with the moments' changes or without.
+template <class Real>
+double scatterKeyed(bool moments, Real* w, const Real* xs, const Real* ys, const int* nodes, const double* values, const int* index,
+                    int count, double& dx, double& dy)
+{
+    const auto scatter =
+        moments ? SNARESIM_ON_VECTOR_TARGET(scatterNodesKeyed<true, Real>) : SNARESIM_ON_VECTOR_TARGET(scatterNodesKeyed<false, Real>);
+    return scatter(w, xs, ys, nodes, values, index, count, dx, dy);
+}
 } // namespace
 
 void Membrane::setNextAt(const int* nodes, const double* values, const int* index, int count)
 {
-    if (single)
+    // the running sums follow, unless they are taken later (takeSumsWithBlocks)
+    const bool kept = sumSide == 0;
+    double dx = 0.0, dy = 0.0;
+    const double change = single
+                              ? scatterKeyed(kept && momentsKept, fNext.data(), fX.data(), fY.data(), nodes, values, index, count, dx, dy)
+                              : scatterKeyed(kept && momentsKept, wNext.data(), dX.data(), dY.data(), nodes, values, index, count, dx, dy);
+    if (kept)
     {
-        // the running sums follow, unless they are taken later (takeSumsWithBlocks)
-        const bool kept = sumSide == 0;
-        const auto scatter = kept && momentsKept ? SNARESIM_ON_VECTOR_TARGET(scatterNodesKeyed<true, float>)
-                                                 : SNARESIM_ON_VECTOR_TARGET(scatterNodesKeyed<false, float>);
-        double dx = 0.0, dy = 0.0;
-        const double change = scatter(fNext.data(), fX.data(), fY.data(), nodes, values, index, count, dx, dy);
-        if (kept)
-        {
-            sumNext += change;
-            xSumNext += dx;
-            ySumNext += dy;
-        }
-        sumsStale = ! kept;
+        sumNext += change;
+        xSumNext += dx;
+        ySumNext += dy;
     }
-    else
-    {
-        const bool kept = sumSide == 0;
-        const auto scatter = kept && momentsKept ? SNARESIM_ON_VECTOR_TARGET(scatterNodesKeyed<true, double>)
-                                                 : SNARESIM_ON_VECTOR_TARGET(scatterNodesKeyed<false, double>);
-        double dx = 0.0, dy = 0.0;
-        const double change = scatter(wNext.data(), dX.data(), dY.data(), nodes, values, index, count, dx, dy);
-        if (kept)
-        {
-            sumNext += change;
-            xSumNext += dx;
-            ySumNext += dy;
-        }
-        sumsStale = ! kept;
-    }
+    sumsStale = ! kept;
 }
 
 void Membrane::nextAt(const int* nodes, double* out, int count) const
