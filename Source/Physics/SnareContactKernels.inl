@@ -3,18 +3,17 @@
 
 // The per-point coefficients of the quadratised solve for the Hertz exponent (beta = 1.5, so
 // psi = psiScale xi^(5/4)), for `count` points whose groups' W0 and cc are W0[group[k]] and
-// cc[group[k]], branch-free so that it vectorises. xi* = u* - W0 is the prediction (no contact force); g is the secant of psi from
-// xi^{n-1} to xi*. While both touch, with x, y their fourth roots, it is
-// (y^5 - x^5) / (y^4 - x^4) = (x^4 + x^3 y + x^2 y^2 + x y^3 + y^4) / ((x + y)(x^2 + y^2)):
+// cc[group[k]], branch-free so that it vectorises. xi* = u* - W0 is the prediction (no contact
+// force); g is the secant of psi from xi^{n-1} to xi*. While both touch, with x, y their fourth
+// roots, it is (y^5 - x^5) / (y^4 - x^4) = (x^4 + x^3 y + x^2 y^2 + x y^3 + y^4) / ((x + y)(x^2 + y^2)):
 // no difference of near values, down to the tangent (5/4) x when they meet.
 // Damped: the contact's damping D = damping [xi^n]_+^(3/2) (lambda kappa xi^beta / (2k), Hunt and
 // Crossley) adds D (xi^{n+1} - xi^{n-1}) to the force, so it joins B = g^2 / 4; into damp[k].
 template <bool Damped>
 void hertzCoefficients(int count, const int* __restrict wireNode, const double* __restrict xiPrev, const double* __restrict xiNow,
                        const double* __restrict u, const double* __restrict psi, const int* __restrict group, const double* __restrict W0,
-                       const double* __restrict cc,
-                       double hs, double psiScale, double gammaS, double damping, double* __restrict gq, double* __restrict alpha,
-                       double* __restrict beta, double* __restrict uFree, double* __restrict damp)
+                       const double* __restrict cc, double hs, double psiScale, double gammaS, double damping, double* __restrict gq,
+                       double* __restrict alpha, double* __restrict beta, double* __restrict uFree, double* __restrict damp)
 {
     for (int k = 0; k < count; ++k)
     {
@@ -69,9 +68,9 @@ void gatherScaled(int count, const int* __restrict index, const double* __restri
 // damping took, damp[k] (xi^{n+1} - xi^{n-1})^2.
 template <bool Damped>
 void finishPoints(int count, const double* __restrict alpha, const double* __restrict beta, const double* __restrict gq,
-                  const int* __restrict group, const double* __restrict S, const double* __restrict W, double gammaS, const double* __restrict xiPrev,
-                  const double* __restrict xiNow, const double* __restrict damp, double* __restrict uFree, double* __restrict xiNext,
-                  double* __restrict psi, double* __restrict dropped)
+                  const int* __restrict group, const double* __restrict S, const double* __restrict W, double gammaS,
+                  const double* __restrict xiPrev, const double* __restrict xiNow, const double* __restrict damp, double* __restrict uFree,
+                  double* __restrict xiNext, double* __restrict psi, double* __restrict dropped)
 {
     for (int k = 0; k < count; ++k)
     {
@@ -324,7 +323,7 @@ void scatterSolvedPoints(int count, const int* __restrict index, const double* _
     }
 }
 
-// out[t] = from[index[t]] (a gather), for doubles and ints.
+// out[t] = from[index[t]] (a gather).
 template <typename T>
 void gatherPoints(int count, const int* __restrict index, const T* __restrict from, T* __restrict out)
 {
