@@ -15,12 +15,12 @@ namespace snaresim
 {
 namespace
 {
-// blockSumsNext's scratch for an n x n grid: every band's row for the sides the kernel holds in
-// registers (1-8: ceil(n / side) bands of ceil(n / side) side values), one band's row for others.
+// The block sums' scratch for an n x n grid: every band's row (ceil(n / side) bands of
+// ceil(n / side) side values), the most any side up to n needs.
 size_t blockSumsScratch(int n)
 {
-    size_t most = (size_t) (2 * n);
-    for (int side = 1; side <= 8; ++side)
+    size_t most = 0;
+    for (int side = 1; side <= n; ++side)
     {
         const size_t blocks = (size_t) ((n + side - 1) / side);
         most = std::max(most, blocks * blocks * (size_t) side);
@@ -106,6 +106,9 @@ Membrane::Membrane(const MembraneSpec& s, double timeStep, double reserve, doubl
         dX = std::move(xs);
         dY = std::move(ys);
     }
+    axis.resize((size_t) n);
+    for (int i = 0; i < n; ++i)
+        axis[(size_t) i] = single ? (double) (float) g.x(i) : g.x(i); // x by column and y by row as fX, fY (dX, dY) hold them
     setCoefficients(s.tension_N_per_m, s.sigma0_per_s, s.sigma1_m2_per_s);
 }
 
@@ -133,6 +136,25 @@ namespace
 #define SNARESIM_KERNELS "MembraneKernels.inl"
 #include "PerVectorTarget.inl"
 
+// blockSumsAndMoments on the state in its precision, with the first moments or without.
+template <class Real>
+void sumsOf(bool moments, const Real* w, int n, int side, const double* xs, const double* ys, double* acc, double* out, double& sum,
+            double& sx, double& sy)
+{
+    const auto pass =
+        moments ? SNARESIM_ON_VECTOR_TARGET(blockSumsAndMoments<true, Real>) : SNARESIM_ON_VECTOR_TARGET(blockSumsAndMoments<false, Real>);
+    pass(w, n, side, xs, ys, acc, out, sum, sx, sy);
+}
+// updateRows for a head's sums kept (Sums) or taken later, with the tilt and the block field or
+// without.
+template <bool Sums>
+auto rowsUpdate(bool tilt, bool field)
+{
+    return tilt ? (field ? SNARESIM_ON_VECTOR_TARGET(updateRows<Sums, true, true>)
+                         : SNARESIM_ON_VECTOR_TARGET(updateRows<Sums, true, false>))
+                : (field ? SNARESIM_ON_VECTOR_TARGET(updateRows<Sums, false, true>)
+                         : SNARESIM_ON_VECTOR_TARGET(updateRows<Sums, false, false>));
+}
 // scatterNodesKeyed on the state in its precision, with the moments' changes or without.
 template <class Real>
 double scatterKeyed(bool moments, Real* w, const Real* xs, const Real* ys, const int* nodes, const double* values, const int* index,
@@ -209,16 +231,8 @@ void Membrane::computeFree(double p0, double px, double py)
                          (float) (gain * py), xSumNext, ySumNext);
         return;
     }
-    sumsStale = sumSide > 0;
-    const auto update = sumsStale // the sums taken later (takeSumsWithBlocks)
-                            ? (tilt ? (field ? SNARESIM_ON_VECTOR_TARGET(updateRows<false, true, true>)
-                                             : SNARESIM_ON_VECTOR_TARGET(updateRows<false, true, false>))
-                                    : (field ? SNARESIM_ON_VECTOR_TARGET(updateRows<false, false, true>)
-                                             : SNARESIM_ON_VECTOR_TARGET(updateRows<false, false, false>)))
-                            : (tilt ? (field ? SNARESIM_ON_VECTOR_TARGET(updateRows<true, true, true>)
-                                             : SNARESIM_ON_VECTOR_TARGET(updateRows<true, true, false>))
-                                    : (field ? SNARESIM_ON_VECTOR_TARGET(updateRows<true, false, true>)
-                                             : SNARESIM_ON_VECTOR_TARGET(updateRows<true, false, false>)));
+    sumsStale = sumSide > 0; // the sums taken later (takeSumsWithBlocks)
+    const auto update = sumsStale ? rowsUpdate<false>(tilt, field) : rowsUpdate<true>(tilt, field);
     double sx = 0.0, sy = 0.0;
     const double sum = update(wNext.data(), wNow.data(), wPrev.data(), field ? dField.data() : nullptr, dX.data(), rowY.data(),
                               rowBegin.data(), rowEnd.data(), n, a0, a1, b0, b1, push, gain * px, gain * py, sx, sy);
@@ -248,24 +262,18 @@ void Membrane::takeSumsWithBlocks(int side)
     const int n = g.width(), blocks = (n + side - 1) / side;
     sumSide = side;
     sideSums.assign((size_t) blocks * (size_t) blocks, 0.0);
-    axisTaken.resize((size_t) n);
-    for (int i = 0; i < n; ++i)
-        axisTaken[(size_t) i] = single ? (double) (float) g.x(i) : g.x(i); // x by column and y by row as fX, fY (dX, dY) hold them
     sumsStale = true;
 }
 
 void Membrane::takeSums() const
 {
-    const auto pass = momentsKept ? SNARESIM_ON_VECTOR_TARGET(blockSumsAndMoments<true, float>)
-                                  : SNARESIM_ON_VECTOR_TARGET(blockSumsAndMoments<false, float>);
-    const auto passDouble = momentsKept ? SNARESIM_ON_VECTOR_TARGET(blockSumsAndMoments<true, double>)
-                                        : SNARESIM_ON_VECTOR_TARGET(blockSumsAndMoments<false, double>);
+    const int n = g.width();
     if (single)
-        pass(fNext.data(), g.width(), sumSide, axisTaken.data(), axisTaken.data(), dRowScratch.data(), sideSums.data(), sumNext, xSumNext,
-             ySumNext);
+        sumsOf(momentsKept, fNext.data(), n, sumSide, axis.data(), axis.data(), dRowScratch.data(), sideSums.data(), sumNext, xSumNext,
+               ySumNext);
     else
-        passDouble(wNext.data(), g.width(), sumSide, axisTaken.data(), axisTaken.data(), dRowScratch.data(), sideSums.data(), sumNext,
-                   xSumNext, ySumNext);
+        sumsOf(momentsKept, wNext.data(), n, sumSide, axis.data(), axis.data(), dRowScratch.data(), sideSums.data(), sumNext, xSumNext,
+               ySumNext);
     sumsStale = false;
 }
 
@@ -277,10 +285,11 @@ void Membrane::blockSumsNext(int side, double* out) const
         std::copy(taken, taken + sideSums.size(), out);
         return;
     }
+    double sum = 0.0, sx = 0.0, sy = 0.0; // the blocks' sums only
     if (single)
-        SNARESIM_ON_VECTOR_TARGET(blockSums(fNext.data(), n, side, dRowScratch.data(), out));
+        sumsOf(false, fNext.data(), n, side, axis.data(), axis.data(), dRowScratch.data(), out, sum, sx, sy);
     else
-        SNARESIM_ON_VECTOR_TARGET(blockSums(wNext.data(), n, side, dRowScratch.data(), out));
+        sumsOf(false, wNext.data(), n, side, axis.data(), axis.data(), dRowScratch.data(), out, sum, sx, sy);
 }
 
 void Membrane::blockAccelerationsIn(int side, int ix0, int iy0, int columns, int rows, double scale, float* out, int stride) const

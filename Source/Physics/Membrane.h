@@ -192,12 +192,13 @@ private:
     bool momentsKept = false;                      // keepMoments
     mutable double xSumNext = 0.0, ySumNext = 0.0; // sum(x w^{n+1}), sum(y w^{n+1}), when kept
     // takeSumsWithBlocks: the side of the blocks summed with them (0: the sums are kept), whether
-    // w^{n+1} changed since they were taken, the blocks' sums, and the grid's coordinates as the
-    // state's xs, ys hold them (x of a column, y of a row: the same values; in float for the float state)
+    // w^{n+1} changed since they were taken, and the blocks' sums
     int sumSide = 0;
     mutable bool sumsStale = false;
     mutable std::vector<double> sideSums;
-    std::vector<double> axisTaken;
+    // the grid's coordinates as the state's xs, ys hold them (x of a column, y of a row: the same
+    // values; in float for the float state), for the sums pass
+    std::vector<double> axis;
     void takeSums() const;
     // w^{n+1} at a node moved by dw: the sums kept follow
     void moved(int node, double dw)

@@ -271,59 +271,17 @@ void firstMoments(const Real* __restrict w, const Real* __restrict xs, const Rea
     sx = ax;
     sy = ay;
 }
-// Block sums of an n x n grid: every band's Side rows summed node by node into a row of acc
-// (the Side values held in registers, vectorised along the row; zero beyond n), then each row's
-// runs of Side values, a block each. The runs are read once every band is summed, not right
-// after their band's stores (a load over stores still in flight waits for them). In double
-// whatever the state: the microphones take second differences in time of these sums, which
-// would lift a float sum's rounding by 1 / (omega k)^2. acc holds every band's row.
-template <int Side, class Real>
-void sumBlocks(const Real* __restrict w, int n, double* __restrict acc, double* __restrict out)
-{
-    const int blocks = (n + Side - 1) / Side, length = blocks * Side;
-    for (int by = 0; by < blocks; ++by)
-    {
-        const int first = by * Side;
-        const Real* row0 = w + (size_t) first * (size_t) n;
-        double* band = acc + (size_t) by * (size_t) length;
-        if (first + Side <= n)
-            for (int ix = 0; ix < n; ++ix)
-            {
-                double s = (double) row0[ix];
-                for (int r = 1; r < Side; ++r)
-                    s += (double) row0[(size_t) r * (size_t) n + (size_t) ix];
-                band[ix] = s;
-            }
-        else // the last, short band
-            for (int ix = 0; ix < n; ++ix)
-            {
-                double s = 0.0;
-                for (int r = 0; r < n - first; ++r)
-                    s += (double) row0[(size_t) r * (size_t) n + (size_t) ix];
-                band[ix] = s;
-            }
-        for (int ix = n; ix < length; ++ix)
-            band[ix] = 0.0;
-    }
-    for (int by = 0; by < blocks; ++by)
-    {
-        const double* band = acc + (size_t) by * (size_t) length;
-        double* o = out + (size_t) by * (size_t) blocks;
-        for (int bx = 0; bx < blocks; ++bx)
-        {
-            double s = band[bx * Side];
-            for (int c = 1; c < Side; ++c)
-                s += band[bx * Side + c];
-            o[bx] = s;
-        }
-    }
-}
-// sumBlocks' pass (the same block sums, to the last bit) with the grid's sum and, with Moments,
-// its first moments on the way, in double: each node weighted by its row's y (ys, by row) and
-// each band's column sum by its column's x (xs, by column). Explicit vectors along the rows, the
-// last one ending at n over the one before (its lanes summed already count nothing twice: a
-// weight of 0 or 1 each), so no row has a scalar end; the sums stay in vector lanes to the end.
-// Rows: the band's rows, a constant where it is Side (0: any, `rows`).
+// Block sums of an n x n grid (block (bx, by): the nodes with ix / side == bx, iy / side == by)
+// with the grid's sum and, with Moments, its first moments on the way, in double whatever the
+// state (the microphones take second differences in time of these sums, which would lift a float
+// sum's rounding by 1 / (omega k)^2): every band's rows summed node by node into a row of acc
+// (zero beyond n), then each row's runs of side values, a block each, read once every band is
+// summed (a load over stores still in flight waits for them); acc holds every band's row. The
+// moments weight each node by its row's y (ys, by row) and each band's column sum by its
+// column's x (xs, by column). Explicit vectors along the rows, the last one ending at n over the
+// one before (its lanes summed already count nothing twice: a weight of 0 or 1 each), so no row
+// has a scalar end; the sums stay in vector lanes to the end. Rows: the band's rows, a constant
+// where it is Side (0: any, `rows`).
 using DoubleVector = double __attribute__((vector_size(SNARESIM_VECTOR_BYTES)));
 using DoubleVectorFloats = float __attribute__((vector_size(SNARESIM_VECTOR_BYTES / 2))); // a DoubleVector's lanes in float
 // A DoubleVector's lanes of floats at p, widened: one conversion from memory on the wide
@@ -455,52 +413,9 @@ void blockSumsAndMoments(const Real* w, int n, int side, const double* xs, const
     }
     sumBlocksAndMoments<0, Moments>(w, n, side, xs, ys, acc, out, sum, sx, sy);
 }
-// The same for any side (fine grids: 96 kHz), the band's rows added one after another: the
-// general form of sumBlocks, whose constant Side keeps a column's sum in a register.
-template <class Real>
-void sumBlocksOfSide(const Real* __restrict w, int n, int side, double* __restrict acc, double* __restrict out)
-{
-    const int blocks = (n + side - 1) / side;
-    for (int by = 0; by < blocks; ++by)
-    {
-        const int first = by * side, last = std::min(n, first + side);
-        std::fill(acc, acc + (size_t) blocks * (size_t) side, 0.0);
-        for (int iy = first; iy < last; ++iy)
-        {
-            const Real* row = w + (size_t) iy * (size_t) n;
-            for (int ix = 0; ix < n; ++ix)
-                acc[ix] += (double) row[ix];
-        }
-        double* o = out + (size_t) by * (size_t) blocks;
-        for (int bx = 0; bx < blocks; ++bx)
-        {
-            double s = 0.0;
-            for (int c = 0; c < side; ++c)
-                s += acc[bx * side + c];
-            o[bx] = s;
-        }
-    }
-}
-template <class Real>
-void blockSums(const Real* w, int n, int side, double* acc, double* out)
-{
-    switch (side)
-    {
-        case 1: sumBlocks<1>(w, n, acc, out); return;
-        case 2: sumBlocks<2>(w, n, acc, out); return;
-        case 3: sumBlocks<3>(w, n, acc, out); return;
-        case 4: sumBlocks<4>(w, n, acc, out); return;
-        case 5: sumBlocks<5>(w, n, acc, out); return;
-        case 6: sumBlocks<6>(w, n, acc, out); return;
-        case 7: sumBlocks<7>(w, n, acc, out); return;
-        case 8: sumBlocks<8>(w, n, acc, out); return;
-        default: break;
-    }
-    sumBlocksOfSide(w, n, side, acc, out);
-}
 // The rectangle's second differences in time summed over blocks, in double: every band of side
 // rows into its row of acc (vectorised along the rows), then the rows' runs, read once every
-// band is summed (as sumBlocks). acc holds ceil(rows / side) rows of `columns`. Block b's sum s
+// band is summed (as sumBlocksAndMoments). acc holds ceil(rows / side) rows of `columns`. Block b's sum s
 // goes to out[b * stride] as the float (s hh) scale.
 template <class Real>
 void blockSecondDifferences(const Real* __restrict next, const Real* __restrict now, const Real* __restrict prev, int n, int ix0, int iy0,
