@@ -149,10 +149,15 @@ RenderStats benchmarkDrum(const ParameterSet& params, const BuildOptions& option
     }
 
     Clock::duration total {}, worst {};
-    for (const auto t : fastest)
+    std::size_t worstIndex = 0;
+    for (std::size_t b = 0; b < fastest.size(); ++b)
     {
-        total += t;
-        worst = std::max(worst, t);
+        total += fastest[b];
+        if (fastest[b] > worst)
+        {
+            worst = fastest[b];
+            worstIndex = b;
+        }
     }
 
     stats.samples = plan.numSamples;
@@ -166,6 +171,7 @@ RenderStats benchmarkDrum(const ParameterSet& params, const BuildOptions& option
     figures.blocks = (std::int64_t) numBlocks;
     figures.meanBlock_s = numBlocks > 0 ? stats.wallSeconds / (double) numBlocks : 0.0;
     figures.worstBlock_s = std::chrono::duration<double>(worst).count();
+    figures.worstBlockAt_s = (double) worstIndex * (double) blockSize / plan.sampleRate_Hz;
     figures.repeats = repeats;
     figures.worstBlockRaw_s = std::chrono::duration<double>(rawWorst).count();
     figures.slowestRun_s = std::chrono::duration<double>(slowestRun).count();

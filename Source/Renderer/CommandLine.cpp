@@ -813,7 +813,8 @@ Benchmark:
                         engine's own cost of the block, without what the machine took
                         meanwhile (other processes, interrupts, a virtual machine's
                         host). realtime_factor, mean_block_ms and worst_block_ms are of
-                        those times; worst_block_raw_ms is the slowest block of any run
+                        those times (worst_block_at_s: where the worst block starts);
+                        worst_block_raw_ms is the slowest block of any run
                         and realtime_factor_slowest_run the slowest whole run. The audio,
                         -o and the other figures are of the first run.
 

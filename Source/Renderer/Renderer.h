@@ -34,6 +34,7 @@ struct BenchFigures
     std::int64_t blocks = 0;
     double meanBlock_s = 0.0;
     double worstBlock_s = 0.0;
+    double worstBlockAt_s = 0.0;      // where that block starts in the render
     int repeats = 1;                  // runs; the block times above are each block's fastest run
     double worstBlockRaw_s = 0.0;     // the slowest block of any run
     double slowestRun_s = 0.0;        // the slowest run's total block time

@@ -129,6 +129,7 @@ std::string formatJson(const RenderReport& r)
         object->setProperty("blocks", (juce::int64) b->blocks);
         object->setProperty("mean_block_ms", 1000.0 * b->meanBlock_s);
         object->setProperty("worst_block_ms", 1000.0 * b->worstBlock_s);
+        object->setProperty("worst_block_at_s", b->worstBlockAt_s);
         object->setProperty("repeats", b->repeats);
         object->setProperty("worst_block_raw_ms", 1000.0 * b->worstBlockRaw_s);
         object->setProperty("realtime_factor_slowest_run", b->slowestRun_s > 0.0 ? secondsRendered(r) / b->slowestRun_s : 0.0);
@@ -176,10 +177,10 @@ std::string benchSummary(const RenderReport& r, const BenchFigures& b)
     const std::string target(snaresim::vectorTargetName(snaresim::vectorTarget()));
     s += formatted("realtime factor %.3gx (%.3f s of audio in %.3f s), vector target %s\n", realtimeFactor(r), secondsRendered(r),
                    r.stats.wallSeconds, target.c_str());
-    s += formatted("block time (each block's fastest of %d run%s): mean %.4g ms, worst %.4g ms; budget %.4g ms "
+    s += formatted("block time (each block's fastest of %d run%s): mean %.4g ms, worst %.4g ms at %.4g s; budget %.4g ms "
                    "(worst = %.3g x the budget)\n",
-                   b.repeats, b.repeats == 1 ? "" : "s", 1000.0 * b.meanBlock_s, 1000.0 * b.worstBlock_s, 1000.0 * b.blockBudget_s,
-                   b.worstBlock_s / b.blockBudget_s);
+                   b.repeats, b.repeats == 1 ? "" : "s", 1000.0 * b.meanBlock_s, 1000.0 * b.worstBlock_s, b.worstBlockAt_s,
+                   1000.0 * b.blockBudget_s, b.worstBlock_s / b.blockBudget_s);
     if (b.repeats > 1)
         s += formatted("raw: slowest block of any run %.4g ms; slowest run %.3gx real time\n", 1000.0 * b.worstBlockRaw_s,
                        b.slowestRun_s > 0.0 ? secondsRendered(r) / b.slowestRun_s : 0.0);

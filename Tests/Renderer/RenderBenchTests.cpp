@@ -78,6 +78,11 @@ TEST_CASE("bench: --json reports the block timings with sane values", "[renderer
     CHECK(worst >= mean);
     CHECK(budget == Approx(1000.0 * 32.0 / 48000.0));
     CHECK(number(json, "worst_block_share") == Approx(worst / budget));
+    // the worst block starts on a block's boundary within the 0.25 s rendered
+    const double at = number(json, "worst_block_at_s");
+    CHECK(at >= 0.0);
+    CHECK(at < 0.25);
+    CHECK(std::fmod(at * 48000.0 + 0.5, 32.0) == Approx(0.5).margin(1e-6));
     CHECK(wall > 0.0);
     CHECK(mean == Approx(1000.0 * wall / 375.0));
     CHECK(number(json, "realtime_factor") > 0.0);
