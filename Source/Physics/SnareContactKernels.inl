@@ -9,28 +9,46 @@
 // no difference of near values, down to the tangent (5/4) x when they meet.
 // Damped: the contact's damping D = damping [xi^n]_+^(3/2) (lambda kappa xi^beta / (2k), Hunt and
 // Crossley) adds D (xi^{n+1} - xi^{n-1}) to the force, so it joins B = g^2 / 4; into damp[k].
+// g is taken in single precision: it may be any value without breaking the energy identity
+// (SnareContact.h), so its rounding only perturbs the force law, by about 1e-7. Its loop is
+// apart, in floats only, so that it runs twice the points a vector of the doubles holds;
+// lower, lowerPredicted and lowerSpan (count each) hold the gaps and the span in floats, then
+// the secant.
 template <bool Damped>
 void hertzCoefficients(int count, const int* __restrict wireNode, const double* __restrict xiPrev, const double* __restrict xiNow,
                        const double* __restrict u, const double* __restrict psi, const int* __restrict group, const double* __restrict W0,
                        const double* __restrict cc, double hs, double psiScale, double gammaS, double damping, double* __restrict gq,
-                       double* __restrict alpha, double* __restrict beta, double* __restrict uFree, double* __restrict damp)
+                       double* __restrict alpha, double* __restrict beta, double* __restrict uFree, double* __restrict damp,
+                       float* __restrict lower, float* __restrict lowerPredicted, float* __restrict lowerSpan)
 {
+    // the gaps xi^{n-1} and xi* (0 where apart) and the span xi* - xi^{n-1}, kept in alpha meanwhile
     for (int k = 0; k < count; ++k)
     {
         const double a = xiPrev[k];
         const double us = u[wireNode[k]];
         const double b = us - W0[group[k]];
         const double span = b - a;
-        // g in single precision: it may be any value without breaking the energy identity
-        // (header), so its rounding only perturbs the force law, by about 1e-7.
-        const float af = a > 0.0 ? (float) a : 0.0f, bf = b > 0.0 ? (float) b : 0.0f;
+        lower[k] = a > 0.0 ? (float) a : 0.0f;
+        lowerPredicted[k] = b > 0.0 ? (float) b : 0.0f;
+        lowerSpan[k] = span != 0.0 ? (float) span : 1.0f;
+        alpha[k] = span;
+        uFree[k] = us;
+    }
+    // the secant over psiScale
+    for (int k = 0; k < count; ++k)
+    {
+        const float af = lower[k], bf = lowerPredicted[k];
         const float x = std::sqrt(std::sqrt(af)), y = std::sqrt(std::sqrt(bf));
         const float x2 = x * x, y2 = y * y;
         const bool both = (x > 0.0f) & (y > 0.0f);
         // at most one touching: (psi(b) - psi(a)) / (b - a), one of the two terms zero
         const float num = both ? (x2 * x2 + x * y * (x2 + y2) + x2 * y2) + y2 * y2 : bf * y - af * x;
-        const float den = both ? (x + y) * (x2 + y2) : (span != 0.0 ? (float) span : 1.0f);
-        const double g = psiScale * (double) (num / den);
+        const float den = both ? (x + y) * (x2 + y2) : lowerSpan[k];
+        lowerSpan[k] = num / den;
+    }
+    for (int k = 0; k < count; ++k)
+    {
+        const double g = psiScale * (double) lowerSpan[k];
         double B = 0.25 * g * g;
         if constexpr (Damped)
         {
@@ -41,9 +59,8 @@ void hertzCoefficients(int count, const int* __restrict wireNode, const double* 
         }
         const double d = 1.0 / (1.0 + gammaS * B);
         gq[k] = g;
-        alpha[k] = (g * psi[k] + B * span) * d;
+        alpha[k] = (g * psi[k] + B * alpha[k]) * d;
         beta[k] = cc[group[k]] * hs * B * d;
-        uFree[k] = us;
     }
 }
 
