@@ -403,12 +403,18 @@ template <bool Moments, class Real>
 void blockSumsAndMoments(const Real* w, int n, int side, const double* xs, const double* ys, double* acc, double* out, double& sum,
                          double& sx, double& sy)
 {
+    // the cells' sides of every bandwidth (1 to 5 nodes: 20 mm cells on the heads' spacings) as
+    // constants, so that a band's rows unroll; any other side as a variable
     switch (side)
     {
         case 1: sumBlocksAndMoments<1, Moments>(w, n, side, xs, ys, acc, out, sum, sx, sy); return;
         case 2: sumBlocksAndMoments<2, Moments>(w, n, side, xs, ys, acc, out, sum, sx, sy); return;
         case 3: sumBlocksAndMoments<3, Moments>(w, n, side, xs, ys, acc, out, sum, sx, sy); return;
         case 4: sumBlocksAndMoments<4, Moments>(w, n, side, xs, ys, acc, out, sum, sx, sy); return;
+        case 5: sumBlocksAndMoments<5, Moments>(w, n, side, xs, ys, acc, out, sum, sx, sy); return;
+        case 6: sumBlocksAndMoments<6, Moments>(w, n, side, xs, ys, acc, out, sum, sx, sy); return;
+        case 7: sumBlocksAndMoments<7, Moments>(w, n, side, xs, ys, acc, out, sum, sx, sy); return;
+        case 8: sumBlocksAndMoments<8, Moments>(w, n, side, xs, ys, acc, out, sum, sx, sy); return;
         default: break;
     }
     sumBlocksAndMoments<0, Moments>(w, n, side, xs, ys, acc, out, sum, sx, sy);
