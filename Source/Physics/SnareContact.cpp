@@ -18,7 +18,7 @@ namespace snaresim
 {
 namespace
 {
-// a row of lowerQ for n points: whole cache lines
+// a row of secantRows for n points: whole cache lines
 int rowOf(int n) { return (n + 15) & ~15; }
 } // namespace
 
@@ -98,7 +98,7 @@ SnareContact::SnareContact(const SnareSpec& spec, SnareWires& wires, Membrane& c
         v->assign(groupNode.size(), 0.0);
     for (auto* v : { &gq, &alphaQ, &betaQ, &uFree, &dampQ, &solveXiPrev, &solveXiNow, &solveXiNext, &solvePsi, &solveDropped })
         v->assign(numPoints, 0.0);
-    lowerQ.assign(3 * (size_t) rowOf(numPoints), 0.0f);
+    secantRows.assign(3 * (size_t) rowOf(numPoints), 0.0f);
     pointGroup.assign(numPoints, 0);
     solvePointGroup.assign(numPoints, 0);
     for (const SizeClass& c : classes)
@@ -175,8 +175,8 @@ void SnareContact::coefficients(int count, const int* wireNode, const double* xi
         const auto kernel =
             damped ? SNARESIM_ON_VECTOR_TARGET(hertzCoefficients<true>) : SNARESIM_ON_VECTOR_TARGET(hertzCoefficients<false>);
         kernel(count, wireNode, xiBefore, xiAt, u, psiBefore, group, W0, cc, hs, psiScale, gammaS, dampingPerStep * law.kappa, gq.data(),
-               alphaQ.data(), betaQ.data(), uFree.data(), dampQ.data(), lowerQ.data(), lowerQ.data() + rowOf(count),
-               lowerQ.data() + 2 * rowOf(count));
+               alphaQ.data(), betaQ.data(), uFree.data(), dampQ.data(), secantRows.data(), secantRows.data() + rowOf(count),
+               secantRows.data() + 2 * rowOf(count));
         return;
     }
     for (int t = 0; t < count; ++t)

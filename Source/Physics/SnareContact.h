@@ -178,7 +178,7 @@ private:
     // alpha, beta, u*
     AlignedVector<double> groupW0, groupCc, groupW;
     AlignedVector<double> gq, alphaQ, betaQ, uFree, dampQ;  // dampQ: D per point
-    AlignedVector<float> lowerQ;                            // hertzCoefficients' gaps, span and secant in floats: three rows
+    AlignedVector<float> secantRows;                        // hertzCoefficients' gaps, span and secant in floats: three rows
     // each point's group: every point's (class layout), the solved points' (in the solve's groups)
     AlignedVector<int> pointGroup, solvePointGroup;
     // The solve's subset: per group its reach (predictClass: positive when it takes part), the

@@ -12,14 +12,14 @@
 // g is taken in single precision: it may be any value without breaking the energy identity
 // (SnareContact.h), so its rounding only perturbs the force law, by about 1e-7. Its loop is
 // apart, in floats only, so that it runs twice the points a vector of the doubles holds;
-// lower, lowerPredicted and lowerSpan (count each) hold the gaps and the span in floats, then
-// the secant.
+// gapBefore, gapPredicted and spanSecant (count each) hold the gaps and the span in floats, then
+// (spanSecant) the secant.
 template <bool Damped>
 void hertzCoefficients(int count, const int* __restrict wireNode, const double* __restrict xiPrev, const double* __restrict xiNow,
                        const double* __restrict u, const double* __restrict psi, const int* __restrict group, const double* __restrict W0,
                        const double* __restrict cc, double hs, double psiScale, double gammaS, double damping, double* __restrict gq,
                        double* __restrict alpha, double* __restrict beta, double* __restrict uFree, double* __restrict damp,
-                       float* __restrict lower, float* __restrict lowerPredicted, float* __restrict lowerSpan)
+                       float* __restrict gapBefore, float* __restrict gapPredicted, float* __restrict spanSecant)
 {
     // the gaps xi^{n-1} and xi* (0 where apart) and the span xi* - xi^{n-1}, kept in alpha meanwhile
     for (int k = 0; k < count; ++k)
@@ -28,27 +28,27 @@ void hertzCoefficients(int count, const int* __restrict wireNode, const double* 
         const double us = u[wireNode[k]];
         const double b = us - W0[group[k]];
         const double span = b - a;
-        lower[k] = a > 0.0 ? (float) a : 0.0f;
-        lowerPredicted[k] = b > 0.0 ? (float) b : 0.0f;
-        lowerSpan[k] = span != 0.0 ? (float) span : 1.0f;
+        gapBefore[k] = a > 0.0 ? (float) a : 0.0f;
+        gapPredicted[k] = b > 0.0 ? (float) b : 0.0f;
+        spanSecant[k] = span != 0.0 ? (float) span : 1.0f;
         alpha[k] = span;
         uFree[k] = us;
     }
     // the secant over psiScale
     for (int k = 0; k < count; ++k)
     {
-        const float af = lower[k], bf = lowerPredicted[k];
+        const float af = gapBefore[k], bf = gapPredicted[k];
         const float x = std::sqrt(std::sqrt(af)), y = std::sqrt(std::sqrt(bf));
         const float x2 = x * x, y2 = y * y;
         const bool both = (x > 0.0f) & (y > 0.0f);
         // at most one touching: (psi(b) - psi(a)) / (b - a), one of the two terms zero
         const float num = both ? (x2 * x2 + x * y * (x2 + y2) + x2 * y2) + y2 * y2 : bf * y - af * x;
-        const float den = both ? (x + y) * (x2 + y2) : lowerSpan[k];
-        lowerSpan[k] = num / den;
+        const float den = both ? (x + y) * (x2 + y2) : spanSecant[k];
+        spanSecant[k] = num / den;
     }
     for (int k = 0; k < count; ++k)
     {
-        const double g = psiScale * (double) lowerSpan[k];
+        const double g = psiScale * (double) spanSecant[k];
         double B = 0.25 * g * g;
         if constexpr (Damped)
         {
