@@ -244,11 +244,48 @@ void predictClasses(const SnareContact::SizeClass* classes, int numClasses, cons
 }
 
 // The indices first + i of the `count` groups whose reach is positive, in order, into list;
-// returns how many. On avx512 sixteen at a time, compressed in a register and stored whole (its
-// lanes beyond the count land where later groups' indices go: list holds count entries).
+// returns how many. On avx512 sixteen at a time, compressed in a register and stored whole; on
+// avx2 four at a time, packed by a byte shuffle from a table of the sixteen masks and stored
+// whole (the lanes beyond the count land where later groups' indices go: list holds count
+// entries).
+#if SNARESIM_VECTOR_TARGETS && SNARESIM_VECTOR_BYTES == 32
+// For each mask of four lanes, the bytes that pack its set lanes' 32-bit values to the front.
+struct PackTable
+{
+    alignas(16) signed char bytes[16][16];
+    constexpr PackTable() : bytes {}
+    {
+        for (int mask = 0; mask < 16; ++mask)
+        {
+            int to = 0;
+            for (int lane = 0; lane < 4; ++lane)
+                if ((mask >> lane) & 1)
+                {
+                    for (int b = 0; b < 4; ++b)
+                        bytes[mask][4 * to + b] = (signed char) (4 * lane + b);
+                    ++to;
+                }
+            for (int b = 4 * to; b < 16; ++b)
+                bytes[mask][b] = -1; // zero
+        }
+    }
+};
+inline constexpr PackTable packTable {};
+#endif
 int listReaching(int count, const double* __restrict reach, int first, int* __restrict list)
 {
     int n = 0, i = 0;
+#if SNARESIM_VECTOR_TARGETS && SNARESIM_VECTOR_BYTES == 32
+    __m128i ids = _mm_add_epi32(_mm_set1_epi32(first), _mm_setr_epi32(0, 1, 2, 3));
+    for (; i + 4 <= count; i += 4)
+    {
+        const int taking = _mm256_movemask_pd(_mm256_cmp_pd(_mm256_loadu_pd(reach + i), _mm256_setzero_pd(), _CMP_GT_OQ));
+        const __m128i pack = _mm_load_si128(reinterpret_cast<const __m128i*>(packTable.bytes[taking]));
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(list + n), _mm_shuffle_epi8(ids, pack));
+        n += __builtin_popcount((unsigned) taking);
+        ids = _mm_add_epi32(ids, _mm_set1_epi32(4));
+    }
+#endif
 #if SNARESIM_VECTOR_TARGETS && SNARESIM_VECTOR_BYTES == 64
     __m512i ids = _mm512_add_epi32(_mm512_set1_epi32(first), _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15));
     for (; i + 16 <= count; i += 16)
