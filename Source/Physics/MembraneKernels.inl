@@ -403,8 +403,8 @@ template <bool Moments, class Real>
 void blockSumsAndMoments(const Real* w, int n, int side, const double* xs, const double* ys, double* acc, double* out, double& sum,
                          double& sx, double& sy)
 {
-    // the cells' sides of every bandwidth (1 to 5 nodes: 20 mm cells on the heads' spacings) as
-    // constants, so that a band's rows unroll; any other side as a variable
+    // sides up to 8 nodes as constants, so that a band's rows unroll (the microphones' 20 mm cells
+    // are 1 to 5 nodes a side at every bandwidth); any other side as a variable
     switch (side)
     {
         case 1: sumBlocksAndMoments<1, Moments>(w, n, side, xs, ys, acc, out, sum, sx, sy); return;

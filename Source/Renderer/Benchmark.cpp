@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <numeric>
 #include <stdexcept>
 #include <vector>
 
@@ -148,17 +149,10 @@ RenderStats benchmarkDrum(const ParameterSet& params, const BuildOptions& option
         }
     }
 
-    Clock::duration total {}, worst {};
-    std::size_t worstIndex = 0;
-    for (std::size_t b = 0; b < fastest.size(); ++b)
-    {
-        total += fastest[b];
-        if (fastest[b] > worst)
-        {
-            worst = fastest[b];
-            worstIndex = b;
-        }
-    }
+    const Clock::duration total = std::accumulate(fastest.begin(), fastest.end(), Clock::duration {});
+    const auto slowest = std::max_element(fastest.begin(), fastest.end()); // the first of equals
+    const Clock::duration worst = slowest != fastest.end() ? *slowest : Clock::duration {};
+    const auto worstIndex = (std::size_t)(slowest - fastest.begin());
 
     stats.samples = plan.numSamples;
     stats.channels = 1;
