@@ -419,10 +419,65 @@ void blockSumsAndMoments(const Real* w, int n, int side, const double* xs, const
     }
     sumBlocksAndMoments<0, Moments>(w, n, side, xs, ys, acc, out, sum, sx, sy);
 }
+// blockSecondDifferences for a constant side (2 and up) and a rectangle at least a vector wide:
+// each band's rows summed a vector of columns at a time in registers (the band's rows unrolled),
+// the last vector ending at the rectangle's edge over the one before (it stores the same
+// values). The same operations in the same order as the variable side's loops below: the same
+// sums to the last bit.
+template <int Side, class Real>
+void sideSecondDifferences(const Real* __restrict next, const Real* __restrict now, const Real* __restrict prev, int n, int ix0, int iy0,
+                           int columns, int rows, double hh, double scale, double* __restrict acc, float* __restrict out, int stride)
+{
+    constexpr int lanes = SNARESIM_VECTOR_BYTES / (int) sizeof(double);
+    using V = DoubleVector;
+    const int bxs = (columns + Side - 1) / Side, bys = (rows + Side - 1) / Side;
+    for (int by = 0; by < bys; ++by)
+    {
+        const int first = iy0 + by * Side, count = std::min(rows - by * Side, Side);
+        double* band = acc + (size_t) by * (size_t) columns;
+        for (int start = 0; start < columns; start += lanes)
+        {
+            const int ix = std::min(start, columns - lanes);
+            V b {};
+            const auto add = [&](int iy) {
+                const size_t o = (size_t) iy * (size_t) n + (size_t) (ix0 + ix);
+                b += (lanesInDouble(next + o) - 2.0 * lanesInDouble(now + o)) + lanesInDouble(prev + o);
+            };
+            if (count == Side)
+                for (int r = 0; r < Side; ++r)
+                    add(first + r);
+            else
+                for (int r = 0; r < count; ++r)
+                    add(first + r);
+            std::memcpy(band + ix, &b, sizeof b);
+        }
+    }
+    for (int by = 0; by < bys; ++by)
+    {
+        const double* band = acc + (size_t) by * (size_t) columns;
+        float* o = out + (size_t) by * (size_t) bxs * (size_t) stride;
+        const int whole = columns / Side; // the blocks of Side columns
+        for (int bx = 0; bx < whole; ++bx)
+        {
+            double s = 0.0;
+            for (int c = 0; c < Side; ++c)
+                s += band[bx * Side + c];
+            o[(size_t) bx * (size_t) stride] = (float) ((s * hh) * scale);
+        }
+        if (whole < bxs)
+        {
+            double s = 0.0;
+            for (int ix = whole * Side; ix < columns; ++ix)
+                s += band[ix];
+            o[(size_t) whole * (size_t) stride] = (float) ((s * hh) * scale);
+        }
+    }
+}
 // The rectangle's second differences in time summed over blocks, in double: every band of side
 // rows into its row of acc (vectorised along the rows), then the rows' runs, read once every
 // band is summed (as sumBlocksAndMoments). acc holds ceil(rows / side) rows of `columns`. Block b's sum s
-// goes to out[b * stride] as the float (s hh) scale.
+// goes to out[b * stride] as the float (s hh) scale. Sides of 2 and 3 nodes (the microphones' 8 mm
+// fine cells on grids finer than 5.3 mm) as constants: sideSecondDifferences.
 template <class Real>
 void blockSecondDifferences(const Real* __restrict next, const Real* __restrict now, const Real* __restrict prev, int n, int ix0, int iy0,
                             int columns, int rows, int side, double hh, double scale, double* __restrict acc, float* __restrict out,
@@ -440,6 +495,12 @@ void blockSecondDifferences(const Real* __restrict next, const Real* __restrict 
                 row[(size_t) ix * (size_t) stride] = (float) ((s * hh) * scale);
             }
         }
+        return;
+    }
+    if (columns >= SNARESIM_VECTOR_BYTES / (int) sizeof(double) && (side == 2 || side == 3))
+    {
+        const auto sides = side == 2 ? sideSecondDifferences<2, Real> : sideSecondDifferences<3, Real>;
+        sides(next, now, prev, n, ix0, iy0, columns, rows, hh, scale, acc, out, stride);
         return;
     }
     const int bxs = (columns + side - 1) / side, bys = (rows + side - 1) / side;
