@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <new>
+#include <thread>
 
 #include "CountingAllocator.h"
 
@@ -28,6 +29,21 @@ TEST_CASE("the allocation counter sees allocations on the counted thread only", 
     auto* q = new int(4); // not counted
     delete q;
     CHECK(snaresim::test::countedAllocations.load() == before + 1);
+
+    // Another thread's allocations are not counted while this one counts: a thread that
+    // allocates adds what one that does not adds (the thread's own state, allocated here).
+    const auto added = [](auto body) {
+        CountAllocations counting;
+        const long start = snaresim::test::countedAllocations.load();
+        std::thread(body).join();
+        return snaresim::test::countedAllocations.load() - start;
+    };
+    const long idle = added([] {});
+    const long allocating = added([] {
+        for (int i = 0; i < 100; ++i)
+            delete new int(i);
+    });
+    CHECK(allocating == idle);
 }
 
 TEST_CASE("strikes, steps, the snares switch and reset allocate nothing, with the energy ledger kept", "[energy][realtime]")

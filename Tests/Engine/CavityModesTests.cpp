@@ -43,13 +43,21 @@ TEST_CASE("cavity modes: the default drum's, by frequency", "[cavitymodes]")
     const DrumConfig cfg = withModes(DrumConfig {}, 1400.0);
     const CavityModes modes(cfg.cavity, cfg.cavityModesUpTo_Hz(), cfg.batter.radius_m, 1.0 / cfg.sampleRate_Hz);
     const double R = cfg.batter.radius_m, H = cfg.cavity.shellDepth_m, c = cfg.cavity.soundSpeed_m_per_s;
-    REQUIRE(modes.size() >= 9);
-    // (1,1,0) twice, (2,1,0) twice, (0,1,0), (0,0,1), (3,1,0) twice, (1,1,1) twice
+    // to 1400 Hz: (1,1,0) twice, (2,1,0) twice, (0,1,0), (0,0,1), (3,1,0) twice, (1,1,1) twice;
+    // the next, (2,1,1), lies at 1543 Hz
+    REQUIRE(modes.size() == 10);
     CHECK(modes.mode(0).m == 1);
     CHECK(modes.mode(1).m == 1);
     CHECK(modes.mode(0).sine != modes.mode(1).sine);
     CHECK(modes.frequency_Hz(0) == Approx(1.84118 * c / (2.0 * std::numbers::pi * R)).epsilon(1e-5));
     CHECK(modes.frequency_Hz(2) == Approx(3.05424 * c / (2.0 * std::numbers::pi * R)).epsilon(1e-5));
+    CHECK(modes.frequency_Hz(4) == Approx(3.83171 * c / (2.0 * std::numbers::pi * R)).epsilon(1e-5));
+    CHECK(modes.frequency_Hz(6) == Approx(4.20119 * c / (2.0 * std::numbers::pi * R)).epsilon(1e-5));
+    // (1,1,1): the (1,1) radial shape and half a wavelength across the depth
+    const double k111 = std::hypot(1.84118 / R, std::numbers::pi / H);
+    CHECK(modes.mode(8).m == 1);
+    CHECK(modes.frequency_Hz(8) == Approx(k111 * c / (2.0 * std::numbers::pi)).epsilon(1e-5));
+    CHECK(modes.frequency_Hz(9) == Approx(modes.frequency_Hz(8)).epsilon(1e-12));
     bool axial = false;
     for (int i = 0; i < modes.size(); ++i)
     {

@@ -82,7 +82,11 @@ TEST_CASE("outside air: the drum's lowest modes match the air box's within 2 % i
     box.airBox.walls = AirWalls::absorbing;
     box.airBox.size_m = { 1.4, 1.4, 1.4 };
     box.airBox.threads = 2;
-    const test::LowModes air = test::lowModes(box, 1 << 14, { 0.0, 345.0 });
+    // The box's anti-phase (0,1) mode radiates fast (about 830 dB/s) and lies more than 30 dB
+    // under the strongest peak of the volumes' difference, so it is looked for within 5 % of
+    // where the box's own figures put it (docs/MODEL.md, "Outside air": 345.7 Hz,
+    // Lab/airbox_figures); not found there, it is 0 Hz and the comparison fails.
+    const test::LowModes air = test::lowModes(box, 1 << 14, { 0.0, 345.7 });
 
     const auto compare = [&](const DrumConfig& model, bool shouldMatch) {
         const test::LowModes m = test::lowModes(model, 1 << 14, { 0.0, air.antiPhase.frequency_Hz });
