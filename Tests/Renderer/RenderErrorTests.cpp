@@ -13,6 +13,7 @@
 #include <csignal>
 #include <fstream>
 #include <iostream>
+#include <iterator>
 #include <thread>
 
 using namespace rendertest;
@@ -116,13 +117,19 @@ TEST_CASE("bad input: unknown parameters, out-of-range values, unknown presets",
                     "unknown parameter 'loudness'");
     requireBadInput(dir, { "--hit", "0:100", "--preset", (dir.in()).string() + "/" }, "no such preset file");
 
+    // every parameter just outside its range, whole numbers for the whole-numbered kinds (a
+    // fraction there is refused before the range is looked at: "bad numbers")
     for (const auto& spec : snaresim::parameterSpecs())
     {
+        const bool whole = spec.kind != snaresim::ParamKind::continuous;
         const double span = spec.maxValue - spec.minValue;
-        for (const double value : { spec.maxValue + 0.5 * span + 1.0, spec.minValue - 0.5 * span - 1.0 })
+        const double above = whole ? spec.maxValue + 1.0 : spec.maxValue + 0.5 * span + 1.0;
+        const double below = whole ? spec.minValue - 1.0 : spec.minValue - 0.5 * span - 1.0;
+        for (const double value : { above, below })
         {
-            const auto assignment = std::string(spec.key) + "=" + std::to_string(value);
-            requireBadInput(dir, { "--hit", "0:100", "--set", assignment }, std::string(spec.key));
+            const auto assignment = std::string(spec.key) + "=" + (whole ? std::to_string((long long) value) : std::to_string(value));
+            INFO(assignment);
+            requireBadInput(dir, { "--hit", "0:100", "--set", assignment }, "outside its range");
         }
     }
 }
@@ -167,6 +174,41 @@ TEST_CASE("bad input: an air box that does not hold the drum, microphones outsid
     requireBadInput(dir, with({ "--box", "0.7", "--box-margin", "0.1" }), "one or the other");
     requireBadInput(dir, { "--hit", "0:100", "--air-mic", "0,0,0.2" }, "applies to the air box only");
     requireBadInput(dir, { "--hit", "0:100", "--mic", "air" }, "--mic air");
+}
+
+TEST_CASE("bad input: the air box's options without the air box, too many or malformed air microphones", "[renderer][errors][airbox]")
+{
+    TempDir dir;
+    requireBadInput(dir, { "--hit", "0:100", "--walls", "reflecting" }, "--walls applies to the air box only");
+    requireBadInput(dir, { "--hit", "0:100", "--box", "1" }, "--box applies to the air box only");
+    requireBadInput(dir, { "--hit", "0:100", "--box-margin", "0.1" }, "--box-margin applies to the air box only");
+    requireBadInput(dir, { "--hit", "0:100", "--threads", "2" }, "--threads applies to the air box only");
+    requireBadInput(dir, { "--hit", "0:100", "--model", "airbox", "--walls", "rigid" }, "--walls");
+    requireBadInput(dir, { "--hit", "0:100", "--model", "airbox", "--air-mic", "1,2" }, "--air-mic");
+    std::vector<std::string> nine { "--hit", "0:100", "--model", "airbox" };
+    for (int i = 1; i <= 9; ++i)
+        nine.insert(nine.end(), { "--air-mic", "0.3,0,0." + std::to_string(i) });
+    requireBadInput(dir, nine, "at most 8 air microphones");
+}
+
+TEST_CASE("bad input: an output over the MIDI file, a negative seed, an empty preset name, a directory as the output", "[renderer][errors]")
+{
+    TempDir dir;
+    fs::create_directories(dir.out());
+    // one snare note (38, velocity 100) and its note-off, 480 ticks a quarter note
+    const std::string bytes("MThd\0\0\0\6\0\0\0\1\1\xe0MTrk\0\0\0\x0c\0\x99\x26\x64\x60\x89\x26\0\0\xff\x2f\0", 34);
+    const auto midi = dir.out() / "x.mid";
+    std::ofstream(midi, std::ios::binary) << bytes;
+    requireBadInput(dir, { "-o", midi.string(), "--midi", midi.string() }, "would overwrite the MIDI file (-o)", false);
+    requireBadInput(dir, { "--midi", midi.string(), "--energy-csv", midi.string() }, "would overwrite the MIDI file (--energy-csv)");
+    std::ifstream in(midi, std::ios::binary);
+    CHECK(std::string(std::istreambuf_iterator<char>(in), {}) == bytes); // the MIDI file as it was
+    in.close();
+    fs::remove(midi);
+
+    requireBadInput(dir, { "--hit", "0:100", "--match-seed", "-1" }, "--match-seed");
+    requireBadInput(dir, { "--hit", "0:100", "--preset", "" }, "empty preset name");
+    requireBadInput(dir, { "-o", dir.out().string() + "/", "--hit", "0:100" }, "not a file name", false);
 }
 
 TEST_CASE("bad input: unreadable or invalid MIDI files", "[renderer][errors]")
