@@ -87,7 +87,7 @@ public:
     int numCutLinks() const { return (int) cutA.size(); }
 
     // Node coordinates (m) of node index i in 0..n-1 along an axis.
-    double coordinate(int axis, int i) const { return (i - 0.5 * (n[axis] - 1)) * h; }
+    double coordinate(int axis, int i) const { return (i - 0.5 * (n[(size_t) axis] - 1)) * h; }
     // The layer l such that the plane between layers l and l+1 is nearest z.
     int layerBelow(double z_m) const;
     // z of the plane between layers l and l+1.

@@ -165,10 +165,10 @@ void SnareSimAudioProcessorEditor::choosePresetFile(bool save)
     const auto folder = juce::File::getSpecialLocation(juce::File::userDocumentsDirectory);
     const juce::String pattern = "*" + juce::String(std::string(snaresim::kPresetFileExtension));
     presetChooser = std::make_unique<juce::FileChooser>(save ? "Save preset file" : "Load preset file", folder, pattern);
-    const int flags = juce::FileBrowserComponent::canSelectFiles |
-                      (save ? juce::FileBrowserComponent::saveMode | juce::FileBrowserComponent::warnAboutOverwriting
-                            : juce::FileBrowserComponent::openMode);
-    presetChooser->launchAsync(flags, [this, save](const juce::FileChooser& chooser) {
+    const int browserFlags = juce::FileBrowserComponent::canSelectFiles |
+                             (save ? juce::FileBrowserComponent::saveMode | juce::FileBrowserComponent::warnAboutOverwriting
+                                   : juce::FileBrowserComponent::openMode);
+    presetChooser->launchAsync(browserFlags, [this, save](const juce::FileChooser& chooser) {
         auto file = chooser.getResult();
         if (file == juce::File())
             return;

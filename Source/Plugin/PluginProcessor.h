@@ -125,6 +125,8 @@ public:
     // processor made after setDefaultQualityMeasurement starts with its `m` (the test runner's).
     void setQualityMeasurement(snaresim::KeepUpCheck::Measurement m) { session.qualityCheck().setMeasurement(std::move(m)); }
     static void setDefaultQualityMeasurement(snaresim::KeepUpCheck::Measurement m);
+    // Measures the air box with `m` instead of timing it (tests: a machine of a known speed).
+    void setAirBoxMeasurement(snaresim::KeepUpCheck::Measurement m) { session.airBoxCheck().setMeasurement(std::move(m)); }
     int qualityMeasurements() const noexcept { return session.qualityCheck().measurementsDone(); }
 
     // The host renders offline (any thread; VST3 hosts call it from the audio thread).

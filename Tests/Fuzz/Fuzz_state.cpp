@@ -38,6 +38,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     juce::MemoryBlock saved;
     proc.getStateInformation(saved);
     proc.setStateInformation(saved.getData(), (int) saved.getSize());
+    const auto reloaded = proc.currentParameters(); // the saved state loads again, exactly
+    for (const auto& spec : snaresim::parameterSpecs())
+        if (reloaded.get(spec.id) != values.get(spec.id))
+            std::abort();
 
     juce::AudioBuffer<float> buffer(2, 64);
     juce::MidiBuffer midi;

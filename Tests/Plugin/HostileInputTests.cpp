@@ -1,6 +1,6 @@
 // What a careless or hostile host may hand the processor: states that are random bytes,
 // truncated, from the first version, from another plug-in, or empty; and floods of MIDI.
-// Each test prints how many cases it tried.
+// With SNARESIM_TEST_REPORT set, the first two print how many cases they tried.
 
 #include <catch2/catch.hpp>
 

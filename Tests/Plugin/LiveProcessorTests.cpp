@@ -9,10 +9,10 @@
 #include "PresetFileActions.h"
 #include "Presets.h"
 #include "ProcessorTestHelpers.h"
-#include "Report.h"
 
 #include <atomic>
 #include <chrono>
+#include <functional>
 #include <iostream>
 #include <limits>
 #include <random>
@@ -657,7 +657,7 @@ TEST_CASE("parameters, programs, state and the editor from the message thread wh
     proc.getStateInformation(fastState);
 
     std::atomic<bool> quit { false };
-    std::atomic<long> blocks { 0 }, bad { 0 };
+    std::atomic<long> blocks { 0 }, bad { 0 }, sounding { 0 };
     std::thread audio([&] {
         juce::AudioBuffer<float> buffer(2, 128);
         juce::MidiBuffer midi;
@@ -670,8 +670,13 @@ TEST_CASE("parameters, programs, state and the editor from the message thread wh
             proc.processBlock(buffer, midi);
             for (int ch = 0; ch < 2; ++ch)
                 for (int i = 0; i < 128; ++i)
-                    if (! std::isfinite(buffer.getSample(ch, i)))
+                {
+                    const float x = buffer.getSample(ch, i);
+                    if (! std::isfinite(x))
                         ++bad;
+                    else if (x != 0.0f)
+                        ++sounding;
+                }
             ++blocks;
         }
     });
@@ -709,8 +714,8 @@ TEST_CASE("parameters, programs, state and the editor from the message thread wh
 
     quit = true;
     audio.join();
-    CHECK(blocks >= 100);
     CHECK(bad == 0);
+    CHECK(sounding > 0); // the strikes were heard through it all
 }
 
 namespace
@@ -806,6 +811,18 @@ TEST_CASE("in real time the air box plays only where it keeps up: here the cavit
 {
     SnareSimAudioProcessor proc;
     fastSettings(proc);
+    // A machine on which the air box needs 6.2 times real time (the AVX2 machine's order,
+    // BENCHMARKS.md, "The air box in real time"), so the verdict is the same on any machine; the
+    // measurement renders the drum it is given for 20 ms of its time, as the real probe renders.
+    proc.setAirBoxMeasurement([](snaresim::DrumSession&, int size, const std::function<bool()>& cancelled) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        snaresim::KeepUpFigures f;
+        f.blockSize = size;
+        f.audioSeconds = cancelled && cancelled() ? 0.0 : 0.1;
+        f.load = 6.2;
+        f.worstBlockShare = 7.5;
+        return f;
+    });
     const int blockSize = 256;
     prepare(proc, 48000.0, blockSize);
     const int swaps = proc.getModelSwapCount();
@@ -813,7 +830,6 @@ TEST_CASE("in real time the air box plays only where it keeps up: here the cavit
     CHECK(proc.airBoxVerdict().state == State::none);
 
     set(proc, ParamId::airModel, (double) snaresim::AirModel::airbox);
-    const auto asked = std::chrono::steady_clock::now();
     render(proc, blockSize, blockSize);
     // Measured off the audio thread; meanwhile the cavity plays, and the editor says so.
     CHECK(proc.airBoxHeldBack());
@@ -823,14 +839,8 @@ TEST_CASE("in real time the air box plays only where it keeps up: here the cavit
     CHECK((measuring == "Air box: measuring whether it keeps up here; the cavity plays meanwhile" || measuring.contains("x real time")));
 
     const auto verdict = waitForVerdict(proc, blockSize);
-    const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - asked).count();
-    snaresim::test::report() << "air box at 48 kHz, blocks of " << blockSize << ": " << verdict.figures.load
-                             << " s of compute per s of audio, slowest block " << verdict.figures.worstBlockShare
-                             << " of its duration, over " << verdict.figures.audioSeconds * 1000.0 << " ms of audio"
-                             << (verdict.figures.cutShort ? " (cut short)" : "") << "; verdict after " << waited << " s\n";
-    // On this machine the air box needs several times real time (BENCHMARKS.md, "The drum in the air box").
     REQUIRE(verdict.state == State::tooSlow);
-    CHECK(verdict.figures.load > 1.0);
+    CHECK(verdict.figures.load == 6.2);
     CHECK(verdict.figures.blockSize == blockSize);
     CHECK(verdict.figures.audioSeconds > 0.0);
     CHECK(proc.airBoxHeldBack());

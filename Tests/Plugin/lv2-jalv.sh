@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Plays the built LV2 in a real LV2 host: Debian's jalv on a JACK server with the dummy driver
 # (no sound card), MIDI notes in from jack_midiseq, the audio out recorded by jack_rec, then
-# checked: the strikes are heard, one per note, both channels alike, nothing clipped to full
-# scale all the time, no silence where a strike was played.
+# checked: the strikes are heard (4 to 8 onsets in 3 s of notes every 0.5 s: the recording's
+# start is not aligned with the sequence), both channels alike, under a thousandth of the
+# samples at full scale.
 #   lv2-jalv.sh BUNDLE_PARENT_DIR PLUGIN_URI WORK_DIR
 # Exits 77 (ctest: skipped) when jalv, jackd or python3 is not installed.
 set -uo pipefail
