@@ -35,12 +35,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             std::abort();
     }
 
+    // The saved state loads again to the same values, as the host holds them (what plays may
+    // differ: a Quality the keep-up check found too slow here plays a lower bandwidth).
+    const auto held = proc.parameterValues();
     juce::MemoryBlock saved;
     proc.getStateInformation(saved);
     proc.setStateInformation(saved.getData(), (int) saved.getSize());
-    const auto reloaded = proc.currentParameters(); // the saved state loads again, exactly
+    const auto reloaded = proc.parameterValues();
     for (const auto& spec : snaresim::parameterSpecs())
-        if (reloaded.get(spec.id) != values.get(spec.id))
+        if (reloaded.get(spec.id) != held.get(spec.id))
             std::abort();
 
     juce::AudioBuffer<float> buffer(2, 64);
