@@ -125,7 +125,8 @@ public:
     void process(float* out, int n);
 
     // Energy bookkeeping, computed every step while enabled (costs about one extra pass): one
-    // term per entry of energyTerms() (batter, carry, mallets, snares, cavity), in that order.
+    // term per entry of energyTerms() (batter, carry, mallets, snares, cavity, then the air's
+    // terms in play: the default drum's outside), in that order.
     void setEnergyTracking(bool on) { trackEnergy = on; }
     bool energyTracking() const noexcept { return trackEnergy; }
     const EnergyLedger& energy() const { return ledger; }

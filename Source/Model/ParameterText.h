@@ -2,7 +2,7 @@
 // How a parameter's value is written and read as text, derived once from its schema entry
 // (Parameters.h): the host's parameter text, the editor's value boxes and tooltips and the
 // renderer's --set all use it.
-//   "3050 N/m", "30.0 N", "25.0 %", "140 mm" (for m), "28.0 g" (for kg), "1.0e8 N/m^α",
+//   "3050 N/m", "30.0 N", "25 %", "140 mm" (for m), "28.0 g" (for kg), "1.0e8 N/m^α",
 //   "On" / "Off" for toggles, the choice's name for choices.
 
 #include "Parameters.h"

@@ -63,7 +63,8 @@ struct StepProfile
         steps = 0;
     }
 
-    // The phases a path runs, in the order step() runs them.
+    // The phases a path runs, grouped by part (step() runs the mallets' and the snares' phases
+    // after their own head's; each phase sums its laps wherever they fall).
     static std::span<const StepPhase> phasesOf(StepPath path)
     {
         using enum StepPhase;

@@ -4,8 +4,8 @@
 // to rest (Y = 0: lossless). The heads feel P^n = -K (q^n - z^n), explicit; the port
 //   p^n = K (q^n - (z^{n+1} + z^{n-1}) / 2),  M (v^{n+1/2} - v^{n-1/2}) / k = p^n,
 //   (z^{n+1} - z^{n-1}) / 2k = (v^{n+1/2} + v^{n-1/2}) / 2 + Y p^n
-// is implicit in z alone. Its energy at n+1/2 (portEnergy) changes over a step by exactly the
-// heads' work on q minus k Y p^2 (portLoss).
+// is implicit in z alone. Its energy at n+1/2 (energy) changes over a step by exactly the
+// heads' work on q minus k Y p^2 (loss).
 
 #include <algorithm>
 #include <utility>

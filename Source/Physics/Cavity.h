@@ -26,7 +26,8 @@ public:
     // K = rho_a c_a^2 / V0 (Pa/m^3); 0 without air.
     double stiffness() const { return K; }
     // Share of a head's kinetic energy the explicit coupling may need, for the grid of a head
-    // of this radius and surface density at time step k: K_max k^2 A / (2 rho), A = pi R^2.
+    // of this radius and surface density at time step k: K_max k^2 A / rho, A = pi R^2 (twice
+    // the bound K_max k^2 A / (2 rho), for margin).
     static double kineticReserve(const CavitySpec& spec, double radius_m, double density_kg_per_m2, double timeStep_s);
 
     double pressureNow() const { return -K * dVNow; } // p^n, Pa

@@ -1,6 +1,6 @@
 #pragma once
-// Coupling between the heads and the cavity, in place of the air forces F^+ (batter) and F^-
-// (carry head) of eq. (2)-(3): the cavity's pressure p^n = -K dV^n pushes the batter up (+p)
+// Coupling between the heads and the cavity, in place of the air forces F_b^- (below the batter)
+// and F_c^+ (above the carry head) of eq. (2)-(3): the cavity's pressure p^n = -K dV^n pushes the batter up (+p)
 // and the carry head down (-p) in their free updates, and once the contact solves have moved
 // the heads, their swept volumes give dV^{n+1} = h_b^2 sum(w_b^{n+1}) - h_c^2 sum(w_c^{n+1}).
 // Explicit (see Cavity.h), so it has no solve. It stores no energy and removes none: the work

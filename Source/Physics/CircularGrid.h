@@ -10,7 +10,7 @@ namespace snaresim
 {
 
 // A grid distribution g over a few nodes, normalised so that h^2 sum(g) = 1 (as g_b in eq. 26).
-// Used for the mallet's contact patch g_b and the listening point.
+// Used for the mallet's contact patch g_b.
 struct GridDistribution
 {
     std::vector<int> index; // flat node indices (interior nodes only)

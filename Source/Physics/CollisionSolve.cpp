@@ -17,7 +17,7 @@ double solveCollision(const PowerLawPotential& phi, double gamma, double a, doub
     double lo = hi - gamma * psiHi;
     const double phiA = phi.phi(a);
     const double scale = std::abs(a) + std::abs(b) + std::abs(lo);
-    // Start from the guess (the last step's root) when it lies in the bracket.
+    // Start from the guess (the last step's root) clamped into the bracket; without one, from -b.
     double r = std::isfinite(guess) ? std::clamp(guess, lo, hi) : hi;
     double lastStep = std::numeric_limits<double>::infinity();
     for (int it = 0; it < 200; ++it)

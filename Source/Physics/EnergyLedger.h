@@ -83,8 +83,9 @@ public:
         dissipated_J = injected_J = 0.0;
     }
 
-    double dissipated_J = 0.0; // cumulative sum of the terms' step losses: k q^n of the heads and
-                               // wires (eq. 34) and the quadratised snare solve's psi resets
+    double dissipated_J = 0.0; // cumulative sum of every term's step losses (eq. 34): the heads',
+                               // the wires', the air's and the contacts' damping, and the
+                               // quadratised snare solve's psi resets
     double injected_J = 0.0;   // net energy from the player: strikes, retrieved mallets, snares on/off
 
     // Sum of the terms, in their order (eq. 34).

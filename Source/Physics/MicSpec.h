@@ -16,7 +16,7 @@ struct MicSpec
     AirPoint room { 0.0, 0.0, 1.07 };                    // the room
     double reach_m = 2.5;                                // no microphone farther from the centre (the delay lines' length)
     double cellSize_m = 0.02;                            // side of the heads' radiating cells
-    double fineCellSize_m = 0.008;                       // and of those within three cells of a microphone's foot
+    double fineCellSize_m = 0.008;                       // and of those near a close microphone (PressureMicrophones.cpp)
     double topGain = 5.7e-3;                             // output per Pa
     double bottomGain = 3.7e-3;                          // output per Pa
     double roomGain = 0.041;                             // output per Pa (the room)

@@ -33,7 +33,7 @@ double secondMoment(const MembraneSpec& m) { return 0.25 * std::numbers::pi * st
 // channels likewise share the first moments, (dt+ X)^2 <= I h^2 |dt+ w|^2, I = pi R^4 / 4, and
 // a head's first moments are orthogonal to its volume and to each other. Against the kinetic
 // energy (rho / 2) h^2 |dt+ w|^2 the shares are max(K_m, K_d) A k^2 / rho and
-// max(K_s, K_d) I k^2 / rho; each K is the largest that keeps its share within spec.reserve
+// max(K_s, K_t) I k^2 / rho (K_s, K_t: the tilt channels' sum and difference); each K is the largest that keeps its share within spec.reserve
 // on the lighter head, and sqrt(K / M) within cornerLimit.
 OutsideAir::Values OutsideAir::stiffnesses(const OutsideAirSpec& s, const MembraneSpec& batter, const MembraneSpec& carry, double k)
 {

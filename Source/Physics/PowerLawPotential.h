@@ -45,7 +45,8 @@ struct PowerLawPotential
         return (phi(a + r) - phi(a)) / r;
     }
 
-    // psi and d psi / d r together, with Phi(a) given: one power evaluation (Newton's inner loop).
+    // psi and d psi / d r together, with Phi(a) given: one power evaluation, two where r is small
+    // beside a (Newton's inner loop).
     struct Secant
     {
         double psi, dpsi;

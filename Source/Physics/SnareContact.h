@@ -36,8 +36,8 @@
 //   A point apart at n-1, apart in the prediction and holding no psi gets g = 0, no force and
 //   keeps psi = 0: its node group is left out of the step unless another of its points takes
 //   part, which gives the same numbers as solving it; the work per step is at most that of
-//   every point touching. g is computed in single precision (any g keeps the identity),
-//   everything that enters the energy in double.
+//   every point touching. With the Hertz exponent (1.5) g is computed in single precision (any
+//   g keeps the identity), everything that enters the energy in double.
 
 #include "Membrane.h"
 #include "PowerLawPotential.h"

@@ -13,7 +13,7 @@
 //  - the counters the editor shows: CPU load, Newton iterations, fallbacks, resets.
 //
 // Threads: process(), setTarget() and the event calls run on the audio thread and never
-// lock, allocate, free, log or block. prepare() / start() / stop() run on another thread
+// lock, allocate, free, log or block. prepare() / start() / stopBuilding() run on another thread
 // while the host keeps the audio thread out of process() during start(). The counters may be
 // read from any thread; pullSnapshot() from one reader thread.
 

@@ -19,7 +19,9 @@
 //
 // Threads: process() and setParameter() may run on the audio thread and never lock, allocate,
 // free, log or block (but in a render, where a rebuilding parameter's event builds the new
-// drum at once). prepare() / start() as DrumPlayer's; the rest on any other thread.
+// drum at once, and in a bounce's first block, which builds the drum the bounce plays: that
+// thread is then not a real-time one). prepare() / start() as DrumPlayer's; the rest on any
+// other thread.
 
 #include "BuildOptions.h"
 #include "DrumPlayer.h"

@@ -99,7 +99,7 @@ SnareSimAudioProcessorEditor::SnareSimAudioProcessorEditor(SnareSimAudioProcesso
     presetLabel.setJustificationType(juce::Justification::centredRight);
     addAndMakeVisible(presetLabel);
 
-    presetBox.setTooltip("Factory presets: choosing one sets every parameter.");
+    presetBox.setTooltip("Factory presets: choosing one sets every parameter but Lower Quality when slow.");
     presetBox.setTitle("Preset");
     presetBox.onChange = [this] {
         const int index = presetBox.getSelectedItemIndex();
@@ -110,8 +110,9 @@ SnareSimAudioProcessorEditor::SnareSimAudioProcessorEditor(SnareSimAudioProcesso
     refreshPresetList();
 
     // Preset files (.snarepreset), the format of the factory presets and of snaresim-render --preset FILE.
-    presetFileButton.setTooltip("Load a preset file (.snarepreset: sets every parameter, the defaults for those it does not list), "
-                                "or save the parameters as one (snaresim-render --preset FILE reads it too).");
+    presetFileButton.setTooltip(
+        "Load a preset file (.snarepreset: sets every parameter but Lower Quality when slow, the defaults for those it does not list), "
+        "or save the parameters as one (snaresim-render --preset FILE reads it too).");
     presetFileButton.setTitle("Preset file");
     presetFileButton.onClick = [this] {
         juce::PopupMenu menu;

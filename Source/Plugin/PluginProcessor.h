@@ -49,7 +49,8 @@ public:
     double getTailLengthSeconds() const override { return 0.0; }
 
     // Programs: the factory presets (snaresim::factoryPresets()). setCurrentProgram sets every
-    // parameter (the preset's values, the defaults for the rest) at once on the calling thread;
+    // parameter but keep_up, the machine's (the preset's values, the defaults for the rest) at
+    // once on the calling thread;
     // called from inside processBlock, it is deferred to the message thread.
     int getNumPrograms() override;
     int getCurrentProgram() override;

@@ -9,7 +9,8 @@ class SnareSimAudioProcessor;
 namespace snaresim::ui
 {
 
-// Message thread. Sets every parameter from the file: its values, the defaults for the rest.
+// Message thread. Sets every parameter but keep_up (the machine's) from the file: its values,
+// the defaults for the rest.
 // Returns what went wrong (one line naming the file, and the line of it), empty on success;
 // on failure no parameter changes.
 juce::String loadPresetFile(SnareSimAudioProcessor& processor, const juce::File& file);

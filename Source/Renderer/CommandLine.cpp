@@ -365,7 +365,7 @@ Walls parseWalls(std::string_view text)
     return parseName<Walls>(text, "--walls", { { "absorbing", Walls::absorbing }, { "reflecting", Walls::reflecting } });
 }
 
-int parseThreads(std::string_view text) { return parseIntegerIn(text, "--threads", 1, 256); }
+int parseThreads(std::string_view text) { return parseIntegerIn(text, "--threads", 1, 64); } // DrumConfig's air box: 1..64
 
 std::filesystem::path parsePath(std::string_view text, std::string_view option)
 {
@@ -715,24 +715,27 @@ Output:
                         channel each in order (pressure, 0.005 per Pa)
   --seconds S           length in seconds, 0 < S <= 3600 (default: 2; with --midi, the
                         latest strike + 2). Strikes at or after the end are not played.
-  --sample-rate HZ      whole number of Hz, 8000..384000 (default 48000). From 44100 Hz
-                        the default's grids (bandwidth to 8.1 kHz) are simulated at 32 or
-                        33.075 kHz and resampled to the rate; finer grids from 88200 Hz
-                        at the rate halved while it stays at 44.1 kHz or above; the air
-                        box at the rate itself. The resampling's delay (about 2 ms) is
-                        taken off: a strike at t sounds at t
+  --sample-rate HZ      whole number of Hz, 8000..384000 (default 48000). The drum is
+                        simulated at the rate halved while the half stays at 44.1 kHz or
+                        above; where that is 44.1 to 48 kHz, the default's grids
+                        (bandwidth to 8.1 kHz) at two thirds of it (32 kHz; 33.075 kHz
+                        at 44.1), resampled to the rate; the air box at the rate itself.
+                        The resampling's delay (about 2 ms) is taken off: a strike at t
+                        sounds at t
   --energy-csv FILE     also write the energy ledger, one row per sample (where the drum
                         is simulated at a lower rate, the last simulated step's ledger):
                         time_s, one column per term of the ledger (batter_J, carry_J,
-                        mallets_J, snares_J, cavity_J, airbox_J), total_J, dissipated_J,
-                        injected_J, balance_J (total = the terms' sum; balance = total
-                        + dissipated - injected, constant up to round-off)
+                        mallets_J, snares_J, cavity_J, then the air's terms in play:
+                        cavity_modes_J, outside_J, near_field_J, or airbox_J), total_J,
+                        dissipated_J, injected_J, balance_J (total = the terms' sum;
+                        balance = total + dissipated - injected, constant up to
+                        round-off)
   --energy-plot FILE    also write a PNG (1400 x 600): left, the normalised variation of
                         the energy balance (h^n - h^0) / h^0, h^0 = the total energy right
                         after the first strike; right, the energy of each component and
                         the total, against time in ms
   --spectrogram FILE    also write a PNG (1200 x 700): log-frequency spectrogram of the
-                        WAV's signal (with --mic all: the mix), Hann window of 2048
+                        WAV's first channel (with --mic all: the mix), Hann window of 2048
                         samples at 48 kHz (scaled with the rate), 75 % overlap, 90 dB range
   --snare-plot FILE     also write a PNG (1200 x 700) of the snare wires for the first
                         25 ms after the first strike: top, the mean displacement of the
@@ -754,13 +757,15 @@ Model:
   --air-mic X,Y,Z       air box: a pressure microphone at X,Y,Z metres from the drum's
                         centre (z up, the batter at +depth/2); repeatable, up to 8, one
                         WAV channel each. None given: the drum's top, bottom and room
-                        mics (the mic_* parameters), each held a cell inside the box
+                        mics (the mic_* parameters), each held a cell and a half inside
+                        the box's walls
   --walls absorbing|reflecting
                         air box: the box's walls (default absorbing; --lossless:
                         reflecting)
   --box X,Y,Z | --box S air box: its size in metres (default 0.6 m cube), or
   --box-margin M        the drum's extent plus M metres of air on every side
-  --threads N           air box: threads for the air update (default: all cores)
+  --threads N           air box: threads for the air update, 1..64 (default: every core,
+                        64 at most)
   --set ID=VALUE        set one parameter (after the preset and --model); repeatable.
                         A number may carry a unit (shell_depth=120mm); integer, on/off
                         and choice parameters take whole numbers only; on/off and choice
@@ -770,7 +775,7 @@ Model:
   --set-at TIME:ID=VALUE
                         from TIME seconds on, set one parameter as a host's automation
                         does: smoothed over 30 ms, or a new drum built and crossfaded in
-                        (20 ms) where the parameter needs one (snare_count, quality, ...);
+                        (20 ms) where the parameter needs one (snare_count, bandwidth, ...);
                         repeatable (e.g. --set-at 1:snares_engaged=off)
   --lossless            switch every loss off (energy is then conserved); reports the
                         energy balance drift (energy_relative_drift_max)
@@ -887,7 +892,7 @@ that build (default: the widest the processor has; one it lacks: a line on stder
 widest). baseline rounds the same on every x86-64 processor: the golden renders use it.
 Exit status: 0 success, 2 bad input or unwritable output (one line on stderr starting
 with "snaresim-render: error: ", no output file left behind), 1 internal failure,
-130 / 143 interrupted by SIGINT / SIGTERM (no output file left behind).
+130 / 143 / 129 interrupted by SIGINT / SIGTERM / SIGHUP (no output file left behind).
 Outputs (WAV, CSV, PNGs; no two may be the same file) are written to a temporary file
 next to the target and renamed when complete.
 )";

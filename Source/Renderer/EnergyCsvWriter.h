@@ -2,8 +2,9 @@
 // Streaming the energy ledger as CSV into an AtomicFile's temporary file, one row per
 // sample (time_s = sample index / sample rate; numbers in shortest round-trip form): time_s,
 // one column per ledger term in its order (EnergyLedger::columnName), total_J = their sum,
-// dissipated_J, injected_J and balance_J = total_J + dissipated_J - injected_J. For the drum:
-//   time_s,batter_J,carry_J,mallets_J,snares_J,cavity_J,total_J,dissipated_J,injected_J,balance_J
+// dissipated_J, injected_J and balance_J = total_J + dissipated_J - injected_J. For the default
+// drum (other air models add or drop the air's terms):
+//   time_s,batter_J,carry_J,mallets_J,snares_J,cavity_J,outside_J,total_J,dissipated_J,injected_J,balance_J
 
 #include "AtomicFile.h"
 

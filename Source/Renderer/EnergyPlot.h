@@ -4,8 +4,8 @@
 //   left:  (h^n - h^0) / h^0, h^n = the energy balance (EnergyLedger::balance(), so that
 //          strikes and retrieved mallets do not show as jumps) and h^0 = the total energy
 //          right after the first strike (the deviation is taken from the balance there);
-//   right: each term of the ledger (for the drum: batter, carry, mallets, snares, cavity) and
-//          the total, the legend naming them as the ledger does.
+//   right: each term of the ledger (the default drum's: batter, carry, mallets, snares,
+//          cavity, outside) and the total, the legend naming them as the ledger does.
 // Fed with the ledger of every sample while rendering; keeps the minimum and maximum of
 // each series per time bucket (at most a few thousand), so any render length fits.
 

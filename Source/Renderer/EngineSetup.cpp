@@ -117,7 +117,7 @@ BuildOptions makeBuildOptions(const RenderJob& job, const ParameterSet& params, 
     if (job.boxSize)
         options.boxSize_m = std::array<double, 3> { job.boxSize->x, job.boxSize->y, job.boxSize->z };
     options.boxMargin_m = job.boxMargin;
-    options.threads = job.threads.value_or((int) std::max(1u, std::thread::hardware_concurrency()));
+    options.threads = job.threads.value_or((int) std::clamp(std::thread::hardware_concurrency(), 1u, 64u)); // the air box takes 1..64
     return options;
 }
 

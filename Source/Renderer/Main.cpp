@@ -1,5 +1,5 @@
 // snaresim-render: renders strikes of the SnareSim drum model to a WAV file.
-// This file only wires the pieces together; see CommandLine.h for the options.
+// This file only wires the pieces together; see CommandLine.cpp (helpText) for the options.
 //
 // Exit codes: 0 success; 2 bad input or unusable file (one line on stderr starting with
 // "snaresim-render: error: ", no output left behind); 1 unexpected internal failure;

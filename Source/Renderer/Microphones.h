@@ -39,7 +39,8 @@ std::string_view micChoices();
 // the drum's numAirMics air microphones.
 std::vector<Channel> micChannels(MicOutput mic, int numAirMics);
 
-// The channel (index into micChannels) the spectrogram shows: the only one, or the mix.
+// The channel (index into micChannels) the spectrogram shows: the mix with `all`, else the
+// first (with `air`, the first air microphone).
 int analysedChannel(MicOutput mic);
 
 } // namespace snaresim::render

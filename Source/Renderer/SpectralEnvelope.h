@@ -1,6 +1,6 @@
 #pragma once
 // A strike's spectral envelope over time, for --match: the level in third-octave bands
-// (centres 1000 * 2^(j/3) Hz, j = -10..9: 99 Hz to 7.9 kHz) of short frames over the first
+// (centres 1000 * 2^(j/3) Hz, j = -10..9: 99 Hz to 8 kHz) of short frames over the first
 // 300 ms after the onset (Hann frames of 40 ms every 10 ms: 27 of them), in dB of the whole
 // picture's energy, so that the recording's arbitrary level drops out, and floored 45 dB below
 // the loudest cell, above a recording's noise floor (typically 55 to 70 dB down), so that neither

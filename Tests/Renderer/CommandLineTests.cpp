@@ -290,7 +290,8 @@ TEST_CASE("the air box's options: microphones, walls, box, margin, threads", "[r
     CHECK(errorOf(playable({ "--box", "1,-1,1" })) == "--box: '1,-1,1' must be positive sizes in metres");
     CHECK(errorOf(playable({ "--box-margin", "0" })) == "--box-margin: '0' must be greater than 0 (metres)");
     CHECK(errorOf(playable({ "--walls", "open" })) == "--walls: 'open' is not one of absorbing|reflecting");
-    CHECK(errorOf(playable({ "--threads", "0" })) == "--threads: '0' is outside 1..256");
+    CHECK(errorOf(playable({ "--threads", "0" })) == "--threads: '0' is outside 1..64");
+    CHECK(errorOf(playable({ "--threads", "65" })) == "--threads: '65' is outside 1..64");
 }
 
 TEST_CASE("match options: the recording, the preset file, the parameters searched and the budget", "[renderer][command-line][match]")
