@@ -419,31 +419,49 @@ void blockSumsAndMoments(const Real* w, int n, int side, const double* xs, const
     }
     sumBlocksAndMoments<0, Moments>(w, n, side, xs, ys, acc, out, sum, sx, sy);
 }
-// blockSecondDifferences for a constant side (2 and up) and a rectangle at least a vector wide:
-// each band's rows summed a vector of columns at a time in registers (the band's rows unrolled),
-// the last vector ending at the rectangle's edge over the one before (it stores the same
-// values). The same operations in the same order as the variable side's loops below: the same
-// sums to the last bit.
+// The rectangle's second differences in time summed over blocks of side x side nodes (side 2
+// and up; Side: a constant side, 0: `side`), in double: every band of side rows into its row of
+// acc, each column's sum in row order (a vector of columns at a time, the band's rows unrolled
+// for a constant side; the last vector ends at the rectangle's edge over the one before and
+// stores the same values), then each band's runs of side columns, read once every band is summed
+// (as sumBlocksAndMoments). acc holds ceil(rows / side) rows of `columns`. Block b's sum s goes to
+// out[b * stride] as the float (s hh) scale.
 template <int Side, class Real>
-void sideSecondDifferences(const Real* __restrict next, const Real* __restrict now, const Real* __restrict prev, int n, int ix0, int iy0,
-                           int columns, int rows, double hh, double scale, double* __restrict acc, float* __restrict out, int stride)
+void bandSecondDifferences(const Real* __restrict next, const Real* __restrict now, const Real* __restrict prev, int n, int ix0, int iy0,
+                           int columns, int rows, int side, double hh, double scale, double* __restrict acc, float* __restrict out,
+                           int stride)
 {
     constexpr int lanes = SNARESIM_VECTOR_BYTES / (int) sizeof(double);
     using V = DoubleVector;
-    const int bxs = (columns + Side - 1) / Side, bys = (rows + Side - 1) / Side;
+    const int s = Side > 0 ? Side : side, bxs = (columns + s - 1) / s, bys = (rows + s - 1) / s;
+    const auto at = [&](int iy, int ix) { return (size_t) iy * (size_t) n + (size_t) (ix0 + ix); };
     for (int by = 0; by < bys; ++by)
     {
-        const int first = iy0 + by * Side, count = std::min(rows - by * Side, Side);
+        const int first = iy0 + by * s, count = std::min(rows - by * s, s);
         double* band = acc + (size_t) by * (size_t) columns;
+        if (columns < lanes) // narrower than a vector: column by column
+        {
+            for (int ix = 0; ix < columns; ++ix)
+            {
+                double b = 0.0;
+                for (int r = 0; r < count; ++r)
+                {
+                    const size_t o = at(first + r, ix);
+                    b += ((double) next[o] - 2.0 * (double) now[o]) + (double) prev[o];
+                }
+                band[ix] = b;
+            }
+            continue;
+        }
         for (int start = 0; start < columns; start += lanes)
         {
             const int ix = std::min(start, columns - lanes);
             V b {};
             const auto add = [&](int iy) {
-                const size_t o = (size_t) iy * (size_t) n + (size_t) (ix0 + ix);
+                const size_t o = at(iy, ix);
                 b += (lanesInDouble(next + o) - 2.0 * lanesInDouble(now + o)) + lanesInDouble(prev + o);
             };
-            if (count == Side)
+            if (Side > 0 && count == Side)
                 for (int r = 0; r < Side; ++r)
                     add(first + r);
             else
@@ -456,28 +474,27 @@ void sideSecondDifferences(const Real* __restrict next, const Real* __restrict n
     {
         const double* band = acc + (size_t) by * (size_t) columns;
         float* o = out + (size_t) by * (size_t) bxs * (size_t) stride;
-        const int whole = columns / Side; // the blocks of Side columns
+        const int whole = columns / s; // the blocks of s columns
         for (int bx = 0; bx < whole; ++bx)
         {
-            double s = 0.0;
-            for (int c = 0; c < Side; ++c)
-                s += band[bx * Side + c];
-            o[(size_t) bx * (size_t) stride] = (float) ((s * hh) * scale);
+            double sum = 0.0;
+            for (int c = 0; c < s; ++c)
+                sum += band[bx * s + c];
+            o[(size_t) bx * (size_t) stride] = (float) ((sum * hh) * scale);
         }
         if (whole < bxs)
         {
-            double s = 0.0;
-            for (int ix = whole * Side; ix < columns; ++ix)
-                s += band[ix];
-            o[(size_t) whole * (size_t) stride] = (float) ((s * hh) * scale);
+            double sum = 0.0;
+            for (int ix = whole * s; ix < columns; ++ix)
+                sum += band[ix];
+            o[(size_t) whole * (size_t) stride] = (float) ((sum * hh) * scale);
         }
     }
 }
-// The rectangle's second differences in time summed over blocks, in double: every band of side
-// rows into its row of acc (vectorised along the rows), then the rows' runs, read once every
-// band is summed (as sumBlocksAndMoments). acc holds ceil(rows / side) rows of `columns`. Block b's sum s
-// goes to out[b * stride] as the float (s hh) scale. Sides of 2 and 3 nodes (the microphones' 8 mm
-// fine cells on grids finer than 5.3 mm) as constants: sideSecondDifferences.
+// The rectangle's second differences in time summed over blocks of side x side nodes, scaled
+// into every stride-th float of out: a block a node (side 1) directly; larger blocks by
+// bandSecondDifferences, the fine cells' sides 2 and 3 (the microphones' 8 mm cells on grids
+// finer than 5.3 mm) as constants.
 template <class Real>
 void blockSecondDifferences(const Real* __restrict next, const Real* __restrict now, const Real* __restrict prev, int n, int ix0, int iy0,
                             int columns, int rows, int side, double hh, double scale, double* __restrict acc, float* __restrict out,
@@ -497,35 +514,10 @@ void blockSecondDifferences(const Real* __restrict next, const Real* __restrict 
         }
         return;
     }
-    if (columns >= SNARESIM_VECTOR_BYTES / (int) sizeof(double) && (side == 2 || side == 3))
-    {
-        const auto sides = side == 2 ? sideSecondDifferences<2, Real> : sideSecondDifferences<3, Real>;
-        sides(next, now, prev, n, ix0, iy0, columns, rows, hh, scale, acc, out, stride);
-        return;
-    }
-    const int bxs = (columns + side - 1) / side, bys = (rows + side - 1) / side;
-    for (int by = 0; by < bys; ++by)
-    {
-        double* band = acc + (size_t) by * (size_t) columns;
-        std::fill(band, band + columns, 0.0);
-        for (int iy = iy0 + by * side; iy < std::min(iy0 + rows, iy0 + (by + 1) * side); ++iy)
-        {
-            const size_t o = (size_t) iy * (size_t) n + (size_t) ix0;
-            for (int ix = 0; ix < columns; ++ix)
-                band[ix] += ((double) next[o + ix] - 2.0 * (double) now[o + ix]) + (double) prev[o + ix];
-        }
-    }
-    for (int by = 0; by < bys; ++by)
-    {
-        const double* band = acc + (size_t) by * (size_t) columns;
-        for (int bx = 0; bx < bxs; ++bx)
-        {
-            double s = 0.0;
-            for (int ix = bx * side; ix < std::min(columns, (bx + 1) * side); ++ix)
-                s += band[ix];
-            out[(size_t) (by * bxs + bx) * (size_t) stride] = (float) ((s * hh) * scale);
-        }
-    }
+    const auto bands = side == 2   ? bandSecondDifferences<2, Real>
+                       : side == 3 ? bandSecondDifferences<3, Real>
+                                   : bandSecondDifferences<0, Real>;
+    bands(next, now, prev, n, ix0, iy0, columns, rows, side, hh, scale, acc, out, stride);
 }
 // w at count nodes into out (a gather).
 template <class Real>
