@@ -184,8 +184,7 @@ namespace
 // The snares are chaotic, so a search's path follows the rounding of the vector path it runs
 // on: the two searches below run where every x86-64 processor rounds alike (the golden renders'
 // path, docs/VECTOR_TARGETS.md), so their outcome is the one measured, on any machine.
-const std::vector<std::string> kOnePath { "SNARESIM_VECTOR_TARGET=baseline",
-                                          "GLIBC_TUNABLES=glibc.cpu.hwcaps=-AVX,-AVX2,-FMA,-FMA4,-AVX512F" };
+const std::vector<std::string> kOnePath { "SNARESIM_VECTOR_TARGET=baseline", "GLIBC_TUNABLES=" SNARESIM_BASELINE_TUNABLES };
 } // namespace
 
 TEST_CASE("match: the membrane and snare tensions of a SnareSim strike recovered from far away", "[renderer][match][slow]")
